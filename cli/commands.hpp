@@ -1,0 +1,17 @@
+#pragma once
+// Each heavytop command registers itself on the application and returns the action to run
+// once the command line has been parsed. Actions throw InvalidInput (exit 2) or Failure (1).
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace heavytop::cli {
+
+using Action = std::function<void()>;
+
+Action add_stability_command(CLI::App& app);
+Action add_simulate_command(CLI::App& app);
+Action add_derive_command(CLI::App& app);
+
+}  // namespace heavytop::cli

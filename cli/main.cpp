@@ -1,0 +1,49 @@
+// heavytop: the command-line tool. Thin: parses, calls the library, formats.
+#include <iostream>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "heavytop/body.hpp"
+
+int main(int argc, char** argv) {
+  using namespace heavytop;
+  CLI::App app{"heavytop: the heavy top (a rigid body about a fixed point in gravity), its "
+               "approximate models, their stability and motion.\nUnits SI; conventions in SPEC.md."};
+  app.require_subcommand(0, 1);
+  std::map<CLI::App*, cli::Action> actions;
+  auto add = [&](cli::Action (*make)(CLI::App&)) {
+    const std::size_t before = app.get_subcommands({}).size();
+    cli::Action action = make(app);
+    actions[app.get_subcommands({}).at(before)] = std::move(action);
+  };
+  add(cli::add_stability_command);
+  add(cli::add_simulate_command);
+  add(cli::add_derive_command);
+
+  try {
+    app.parse(argc, argv);
+    for (auto& [command, action] : actions)
+      if (command->parsed()) {
+        action();
+        return 0;
+      }
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << fmt::format("heavytop: error: {}\n", e.what());
+    return 2;
+  } catch (const InvalidInput& e) {
+    std::cerr << fmt::format("heavytop: error: {}: {}\n", e.key(), e.rule());
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << fmt::format("heavytop: error: {}\n", e.what());
+    return 1;
+  }
+}

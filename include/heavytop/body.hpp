@@ -1,0 +1,46 @@
+#pragma once
+/// \file
+/// The body: the immutable model every algorithm takes by `const Body&`.
+
+#include <stdexcept>
+#include <string>
+
+namespace heavytop {
+
+/// Bad user input. Names the offending key (as spelled in the configuration file,
+/// e.g. "body.mass") and the rule it breaks; the CLI prints it on one line and exits 2.
+class InvalidInput : public std::invalid_argument {
+ public:
+  InvalidInput(std::string key, std::string rule);
+  const std::string& key() const noexcept { return key_; }
+  const std::string& rule() const noexcept { return rule_; }
+
+ private:
+  std::string key_;
+  std::string rule_;
+};
+
+/// A rigid body turning about a fixed point O in uniform gravity (SPEC section 1).
+/// Body frame: principal axes x, y, z through O, z the spin (symmetry) axis.
+struct Body {
+  double A = 0.0;        ///< kg m^2, principal moment of inertia about body x through O
+  double B = 0.0;        ///< kg m^2, principal moment of inertia about body y through O
+  double C = 0.0;        ///< kg m^2, principal moment of inertia about body z (spin axis) through O
+  double mass = 0.0;     ///< kg, m
+  double gravity = 9.81; ///< m/s^2, g (>= 0), acting along -zeta of the fixed frame
+  double length = 0.0;   ///< m, R: signed distance from O to the centre of mass along body +z
+                         ///< (> 0: a top on its tip, < 0: a hanging body)
+
+  /// N m, the gravitational moment m g R (signed like R).
+  double mgR() const noexcept { return mass * gravity * length; }
+};
+
+/// Throws InvalidInput for the first rule of SPEC section 1 that `body` breaks:
+/// A, B, C, mass finite and > 0; gravity finite and >= 0; length finite;
+/// the triangle inequalities A + B >= C, B + C >= A, C + A >= B.
+void validate(const Body& body);
+
+/// The built-in example: a realistic toy top (SI units), spun well above its critical spin.
+Body example_toy_top();
+
+}  // namespace heavytop

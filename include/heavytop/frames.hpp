@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// Frames and the paper's small angles, exactly as SPEC section 2 defines them.
+/// Fixed frame (xi, eta, zeta), zeta up; k is the unit vector of the body's spin axis.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// theta, phi and their rates of the axis k (all rad or rad/s).
+struct AxisAngles {
+  double theta = 0.0;       ///< rad, atan2(k_xi, k_zeta)
+  double phi = 0.0;         ///< rad, -asin(k_eta)
+  double theta_rate = 0.0;  ///< rad/s
+  double phi_rate = 0.0;    ///< rad/s
+};
+
+/// The axis frame Q(phi, theta) = R_eta(theta) R_xi(phi) (fixed-frame components of the
+/// paper's Oxyz axes, as columns; not spinning with the body). Its third column is k.
+Eigen::Matrix3d axis_frame(double phi, double theta);
+
+/// Fixed-frame angular velocity of the axis frame: phi' (cos theta, 0, -sin theta) + theta' (0,1,0).
+Eigen::Vector3d axis_frame_rate(double phi, double theta, double phi_rate, double theta_rate);
+
+/// theta, phi of a unit axis k and their rates from k' (fixed-frame components, 1/s).
+/// Exact inverse of k = (sin theta cos phi, -sin phi, cos theta cos phi).
+AxisAngles axis_angles(const Eigen::Vector3d& k, const Eigen::Vector3d& k_rate);
+
+/// The body's attitude and angular velocity at t = 0 for `linearized` and `nonlinear`
+/// (SPEC section 2): principal axes x, y, z are the columns of Q(phi0, theta0) (psi = 0),
+/// angular velocity phi_rate0 (cos theta0, 0, -sin theta0) + theta_rate0 (0, 1, 0) + spin k0.
+struct RigidBodyState {
+  Eigen::Matrix3d attitude;  ///< body-to-fixed rotation: columns are the body axes x, y, z
+  Eigen::Vector3d omega;     ///< rad/s, angular velocity in body axes
+};
+RigidBodyState initial_rigid_body_state(const InitialState& state);
+
+}  // namespace heavytop

@@ -1,0 +1,48 @@
+#pragma once
+/// \file
+/// Linear stability of the linear models (SPEC section 3): the verdict at one spin, and the
+/// exact set of spins at which a model is stable, from the characteristic polynomial.
+
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heavytop/linear_models.hpp"
+
+namespace heavytop {
+
+/// The linear-stability verdict of a model at one spin.
+struct StabilityVerdict {
+  /// Every eigenvalue has zero real part and every multiple one is semisimple.
+  bool stable = false;
+  /// 1/s, the four eigenvalues (roots of the characteristic polynomial), real part ascending.
+  std::vector<std::complex<double>> eigenvalues;
+  /// rad/s, the distinct |Im| of the eigenvalues, ascending; empty unless stable.
+  std::vector<double> frequencies;
+  /// Why, in a few words for a person ("two distinct frequencies", "Jordan block at ...").
+  std::string reason;
+};
+
+/// The verdict of `model` at spin w0 (rad/s). Roots closer than about 1e-10 relative are
+/// treated as double, and a double root is stable only if it is semisimple (no Jordan block;
+/// erratum E2), which is decided from the system matrix, not from the discriminant alone.
+StabilityVerdict linear_stability(const LinearModel& model, double spin);
+
+/// A closed range of spins lo <= w0 <= hi (rad/s); hi = nullopt means "and above".
+/// The model is stable inside; at an end it is stable only where linear_stability says so.
+struct SpinInterval {
+  double lo = 0.0;
+  std::optional<double> hi;
+};
+
+/// The spins w0 >= 0 at which `model` is stable, ascending and disjoint. The ends are roots
+/// of the conditions on the characteristic polynomial (each a polynomial of degree <= 2 in
+/// w0^2), solved in closed form, so they are exact to rounding; no grid is scanned.
+std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model);
+
+/// rad/s, the lo of the unbounded stable interval: 0 when stable at every spin, nullopt when
+/// no spin stabilises the model.
+std::optional<double> critical_spin(const std::vector<SpinInterval>& intervals);
+
+}  // namespace heavytop

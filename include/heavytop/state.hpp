@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// The user's initial state and the reported motion (SPEC section 2).
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace heavytop {
+
+/// The initial state, as the user gives it (SPEC section 2). Angles in rad, rates in rad/s.
+/// phi: about fixed xi; theta: about the intermediate axis; the spin w0 about the body axis z.
+struct InitialState {
+  double spin = 0.0;         ///< rad/s, w0: the spin about the body's z axis
+  double theta0 = 0.0;       ///< rad, theta(0) = atan2(k_xi, k_zeta)
+  double phi0 = 0.0;         ///< rad, phi(0) = -asin(k_eta)
+  double theta_rate0 = 0.0;  ///< rad/s, theta'(0)
+  double phi_rate0 = 0.0;    ///< rad/s, phi'(0)
+};
+
+/// Throws InvalidInput (key "motion.<name>") unless every field is finite.
+void validate(const InitialState& state);
+
+/// The motion of the axis sampled at times t: theta(t), phi(t) and their rates (SPEC section 2),
+/// column by column, plus optional further named columns (e.g. conserved quantities).
+struct Trajectory {
+  std::vector<double> t;           ///< s
+  std::vector<double> theta;       ///< rad
+  std::vector<double> phi;         ///< rad
+  std::vector<double> theta_rate;  ///< rad/s
+  std::vector<double> phi_rate;    ///< rad/s
+  std::vector<std::pair<std::string, std::vector<double>>> extra;  ///< further columns, SI units
+
+  std::size_t size() const noexcept { return t.size(); }
+  void reserve(std::size_t n);
+};
+
+/// n sample times t_i = i t_end / (n - 1), i = 0..n-1 (t = {0} when n == 1). s.
+std::vector<double> sample_times(double t_end, std::size_t n);
+
+}  // namespace heavytop

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs heavytop's build and test dependencies from Debian 12's packages.
+# Does nothing (and needs no network) when they are all present already.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libboost-dev          # linear algebra; Boost.Odeint and Boost.Math (header-only)
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libginac-dev libcln-dev             # computer algebra for the symbolic target
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+  gnuplot-nox                         # figures (PNG and SVG)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -ne 0 ]; then
+  SUDO=sudo
+else
+  SUDO=
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

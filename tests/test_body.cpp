@@ -1,0 +1,124 @@
+// The body's rules (SPEC section 1) and the frames and angles of SPEC section 2.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "heavytop/body.hpp"
+#include "heavytop/frames.hpp"
+
+namespace heavytop {
+namespace {
+
+Body valid_body() { return Body{.A = 1.0, .B = 1.2, .C = 0.7, .mass = 2.0, .gravity = 9.81, .length = 0.1}; }
+
+struct BrokenRule {
+  const char* name;
+  void (*break_it)(Body&);
+  const char* key;
+};
+
+class BodyRule : public ::testing::TestWithParam<BrokenRule> {};
+
+TEST_P(BodyRule, IsRefusedNamingTheKey) {
+  Body body = valid_body();
+  GetParam().break_it(body);
+  try {
+    validate(body);
+    FAIL() << "accepted a body breaking " << GetParam().name;
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), GetParam().key);
+    EXPECT_FALSE(e.rule().empty());
+  }
+}
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+INSTANTIATE_TEST_SUITE_P(
+    Spec, BodyRule,
+    ::testing::Values(
+        BrokenRule{"A>0", [](Body& b) { b.A = 0.0; }, "body.A"},
+        BrokenRule{"A finite", [](Body& b) { b.A = kNaN; }, "body.A"},
+        BrokenRule{"B>0", [](Body& b) { b.B = -1.0; }, "body.B"},
+        BrokenRule{"B finite", [](Body& b) { b.B = kInf; }, "body.B"},
+        BrokenRule{"C>0", [](Body& b) { b.C = 0.0; }, "body.C"},
+        BrokenRule{"mass>0", [](Body& b) { b.mass = -1.0; }, "body.mass"},
+        BrokenRule{"mass finite", [](Body& b) { b.mass = kNaN; }, "body.mass"},
+        BrokenRule{"gravity>=0", [](Body& b) { b.gravity = -9.81; }, "body.gravity"},
+        BrokenRule{"gravity finite", [](Body& b) { b.gravity = kInf; }, "body.gravity"},
+        BrokenRule{"length finite", [](Body& b) { b.length = kNaN; }, "body.length"},
+        BrokenRule{"A+B>=C", [](Body& b) { b.C = 2.3; }, "body.C"},
+        BrokenRule{"B+C>=A", [](Body& b) { b.A = 2.0; }, "body.A"},
+        BrokenRule{"C+A>=B", [](Body& b) { b.B = 1.8; }, "body.B"}),
+    [](const auto& info) {
+      std::string n = info.param.name;
+      for (char& c : n) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
+
+TEST(Body, FlatBodyOnTheTriangleBoundaryIsAccepted) {
+  // A + B = C exactly (a flat disc about its centre) and in rounded decimal arithmetic.
+  EXPECT_NO_THROW(validate(Body{.A = 1.0, .B = 1.0, .C = 2.0, .mass = 1.0, .length = 0.0}));
+  EXPECT_NO_THROW(validate(Body{.A = 0.1, .B = 0.2, .C = 0.3, .mass = 1.0, .length = 0.0}));
+  EXPECT_NO_THROW(validate(Body{.A = 1.0, .B = 1.0, .C = 1.0, .mass = 1.0, .gravity = 0.0, .length = -1.0}));
+}
+
+TEST(Body, ExampleTopIsValidAndRealistic) {
+  const Body top = example_toy_top();
+  EXPECT_NO_THROW(validate(top));
+  // A toy top: tens of grams, a few centimetres, critical spin of the order of 1000 rpm.
+  const double critical = 2.0 * std::sqrt(top.A * top.mgR()) / top.C;
+  EXPECT_GT(critical * 30.0 / M_PI, 500.0);
+  EXPECT_LT(critical * 30.0 / M_PI, 3000.0);
+}
+
+TEST(InitialStateRules, NonFiniteIsRefused) {
+  InitialState s;
+  s.theta_rate0 = kNaN;
+  try {
+    validate(s);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "motion.theta_rate0");
+  }
+}
+
+TEST(Frames, AxisFrameThirdColumnIsSpecAxis) {
+  const double phi = 0.3, theta = -0.7;
+  const Eigen::Vector3d k = axis_frame(phi, theta).col(2);
+  EXPECT_NEAR(k.x(), std::sin(theta) * std::cos(phi), 1e-15);
+  EXPECT_NEAR(k.y(), -std::sin(phi), 1e-15);
+  EXPECT_NEAR(k.z(), std::cos(theta) * std::cos(phi), 1e-15);
+  const AxisAngles a = axis_angles(k, Eigen::Vector3d::Zero());
+  EXPECT_NEAR(a.phi, phi, 1e-15);
+  EXPECT_NEAR(a.theta, theta, 1e-15);
+}
+
+TEST(Frames, RatesOfTheAxisInvertTheAxisFrameRate) {
+  // k' = w x k with w the axis frame's angular velocity must give back phi', theta'.
+  const double phi = -0.4, theta = 1.1, phi_rate = 0.25, theta_rate = -1.5;
+  const Eigen::Vector3d k = axis_frame(phi, theta).col(2);
+  const Eigen::Vector3d k_rate = axis_frame_rate(phi, theta, phi_rate, theta_rate).cross(k);
+  const AxisAngles a = axis_angles(k, k_rate);
+  EXPECT_NEAR(a.phi_rate, phi_rate, 1e-14);
+  EXPECT_NEAR(a.theta_rate, theta_rate, 1e-14);
+  // And against a finite difference of the exact angles.
+  const double h = 1e-6;
+  const Eigen::Vector3d k_next = axis_frame(phi + h * phi_rate, theta + h * theta_rate).col(2);
+  EXPECT_NEAR((k_next - k).norm() / h, k_rate.norm(), 1e-5);
+}
+
+TEST(Frames, InitialRigidBodyStateFollowsSpec) {
+  InitialState s{.spin = 10.0, .theta0 = 0.2, .phi0 = -0.1, .theta_rate0 = 0.3, .phi_rate0 = 0.4};
+  const RigidBodyState x = initial_rigid_body_state(s);
+  EXPECT_NEAR((x.attitude.transpose() * x.attitude - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-15);
+  // The spin component along the body axis: w0 plus the axis frame's own rate along k.
+  const Eigen::Vector3d k = x.attitude.col(2);
+  const Eigen::Vector3d frame_rate = axis_frame_rate(s.phi0, s.theta0, s.phi_rate0, s.theta_rate0);
+  EXPECT_NEAR(x.omega.z(), s.spin + frame_rate.dot(k), 1e-14);
+  EXPECT_NEAR(frame_rate.dot(k), -s.theta_rate0 * std::sin(s.phi0), 1e-15);
+}
+
+}  // namespace
+}  // namespace heavytop
