@@ -1,3 +1,138 @@
-// placeholder
+// heavytop simulate: one model's motion, theta(t), phi(t) and their rates, as CSV or JSON.
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
-namespace heavytop::cli { Action add_simulate_command(CLI::App& app) { app.add_subcommand("simulate", "(being written)"); return []{}; } }
+#include "common.hpp"
+#include "heavytop/linear_motion.hpp"
+#include "heavytop/nonlinear.hpp"
+
+namespace heavytop::cli {
+namespace {
+
+struct SimulateOptions {
+  std::string model = "nonlinear";
+  double t_end = 10.0;
+  long long samples = 1001;
+  std::string method = "analytic";
+  double rtol = NonlinearOptions{}.rtol;
+  double atol = NonlinearOptions{}.atol;
+  CLI::Option* model_option = nullptr;
+  CLI::Option* t_end_option = nullptr;
+  CLI::Option* samples_option = nullptr;
+  CLI::Option* method_option = nullptr;
+  CLI::Option* rtol_option = nullptr;
+  CLI::Option* atol_option = nullptr;
+};
+
+std::vector<std::string> columns(const Trajectory& tr) {
+  std::vector<std::string> names{"t", "theta", "phi", "theta_rate", "phi_rate"};
+  for (const auto& [name, values] : tr.extra) names.push_back(name);
+  return names;
+}
+
+const std::vector<double>& column(const Trajectory& tr, std::size_t i) {
+  const std::vector<double>* base[] = {&tr.t, &tr.theta, &tr.phi, &tr.theta_rate, &tr.phi_rate};
+  return i < 5 ? *base[i] : tr.extra[i - 5].second;
+}
+
+std::string to_csv(const Trajectory& tr) {
+  const auto names = columns(tr);
+  fmt::memory_buffer out;
+  for (std::size_t c = 0; c < names.size(); ++c) fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", names[c]);
+  out.push_back('\n');
+  for (std::size_t i = 0; i < tr.size(); ++i) {
+    for (std::size_t c = 0; c < names.size(); ++c)
+      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", column(tr, c)[i]);
+    out.push_back('\n');
+  }
+  return fmt::to_string(out);
+}
+
+std::string to_json(const std::string& model, const Inputs& in, const Trajectory& tr,
+                    const NonlinearSummary* summary) {
+  nlohmann::ordered_json out;
+  out["model"] = model;
+  const Body& b = in.body();
+  out["body"] = {{"A", b.A}, {"B", b.B}, {"C", b.C}, {"mass", b.mass}, {"gravity", b.gravity}, {"length", b.length}};
+  const InitialState& s = in.state();
+  out["motion"] = {{"spin", s.spin}, {"theta0", s.theta0}, {"phi0", s.phi0},
+                   {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}};
+  const auto names = columns(tr);
+  out["columns"] = names;
+  for (std::size_t c = 0; c < names.size(); ++c) out[names[c]] = column(tr, c);
+  if (summary) {
+    out["summary"] = {{"steps", summary->steps},
+                      {"rejected_steps", summary->rejected_steps},
+                      {"rhs_evaluations", summary->rhs_evaluations},
+                      {"max_relative_energy_drift", summary->max_relative_energy_drift},
+                      {"max_relative_vertical_momentum_drift", summary->max_relative_vertical_momentum_drift}};
+  }
+  return out.dump() + "\n";
+}
+
+}  // namespace
+
+Action add_simulate_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "simulate", "The motion of one model: CSV columns t,theta,phi,theta_rate,phi_rate (SI units)");
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv", "json"});
+  auto o = std::make_shared<SimulateOptions>();
+  o->model_option = cmd->add_option("--model", o->model, "first-order | body-fixed | linearized | nonlinear")
+                        ->check(CLI::IsMember({"first-order", "body-fixed", "linearized", "nonlinear"}))
+                        ->default_str(o->model);
+  o->t_end_option = cmd->add_option("--t-end", o->t_end, "s, end of the simulated interval (> 0)")
+                        ->default_str("10");
+  o->samples_option = cmd->add_option("--samples", o->samples, "rows, at t_i = i T / (N - 1) (>= 2)")
+                          ->default_str("1001");
+  o->method_option = cmd->add_option("--method", o->method,
+                                     "linear models: analytic (closed form) | numeric (matrix exponential)")
+                         ->check(CLI::IsMember({"analytic", "numeric"}))
+                         ->default_str("analytic");
+  o->rtol_option = cmd->add_option("--rtol", o->rtol, "nonlinear: relative tolerance per step")
+                       ->default_str(fmt::format("{}", o->rtol));
+  o->atol_option = cmd->add_option("--atol", o->atol, "nonlinear: absolute tolerance per step")
+                       ->default_str(fmt::format("{}", o->atol));
+  inputs->allow_section("simulate", {"model", "t_end", "samples", "method", "rtol", "atol"});
+
+  return [inputs, o] {
+    inputs->resolve();
+    // The [simulate] section of the configuration, where the command line says nothing.
+    if (!o->model_option->count()) o->model = inputs->section_string("simulate", "model").value_or(o->model);
+    if (!o->method_option->count()) o->method = inputs->section_string("simulate", "method").value_or(o->method);
+    if (!o->t_end_option->count()) o->t_end = inputs->section_number("simulate", "t_end").value_or(o->t_end);
+    if (!o->samples_option->count())
+      o->samples = static_cast<long long>(inputs->section_number("simulate", "samples").value_or(static_cast<double>(o->samples)));
+    if (!o->rtol_option->count()) o->rtol = inputs->section_number("simulate", "rtol").value_or(o->rtol);
+    if (!o->atol_option->count()) o->atol = inputs->section_number("simulate", "atol").value_or(o->atol);
+
+    const bool nonlinear = o->model == "nonlinear";
+    const auto kind = linear_model_from_name(o->model);
+    if (!nonlinear && !kind) throw InvalidInput("--model", "must be one of first-order, body-fixed, linearized, nonlinear");
+    if (o->method != "analytic" && o->method != "numeric")
+      throw InvalidInput("--method", "must be analytic or numeric");
+    if (!(std::isfinite(o->t_end) && o->t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
+    if (o->samples < 2 || o->samples > 100'000'000) throw InvalidInput("--samples", "must be an integer in [2, 100000000]");
+    if (nonlinear && o->method_option->count())
+      throw InvalidInput("--method", "applies to the linear models only (nonlinear is always integrated)");
+    NonlinearOptions options;
+    options.rtol = o->rtol;
+    options.atol = o->atol;
+    validate(options);
+
+    const auto times = sample_times(o->t_end, static_cast<std::size_t>(o->samples));
+    NonlinearSummary summary;
+    const Trajectory tr =
+        nonlinear ? simulate_nonlinear(inputs->body(), inputs->state(), times, options, &summary)
+                  : simulate_linear(linear_model(*kind, inputs->body()), inputs->state(), times,
+                                    o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic);
+    write_output(inputs->output(), inputs->format() == "json"
+                                       ? to_json(o->model, *inputs, tr, nonlinear ? &summary : nullptr)
+                                       : to_csv(tr));
+  };
+}
+
+}  // namespace heavytop::cli

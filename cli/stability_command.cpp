@@ -83,6 +83,8 @@ std::string to_text(const Body& body, double spin, const std::vector<ModelReport
                        r.critical ? fmt::format("{:.6g}", *r.critical) : "none",
                        intervals_text(r.intervals), r.verdict.reason);
   }
+  out << "\n(first-order: the paper's model (4), (9); body-fixed: its model (5), which the paper "
+         "itself calls erroneous; linearized: the exact linearisation, the one to trust.)\n";
   const auto& paper = reports[0];
   const auto& truth = reports[2];
   if (paper.verdict.stable != truth.verdict.stable) {

@@ -43,7 +43,7 @@ Interpolants<T> interpolants(T mu1, T mu2, T alpha1, T alpha2, double t) {
     const T sigma = (alpha1 + alpha2) / 2.0, delta = (alpha1 - alpha2) / 2.0;
     const T ss = std::sin(sigma * t), cs = std::cos(sigma * t);
     const T sd = T(t) * sinc(delta * t), cd = std::cos(delta * t);
-    r.c12 = T(t) * ss / sigma * sd / 2.0;
+    r.c12 = ss / sigma * sd / 2.0;
     r.s12 = (ss / sigma * cd - cs * sd) / (T(2.0) * alpha1 * alpha2);
   }
   return r;
@@ -136,10 +136,10 @@ Trajectory simulate_linear(const LinearModel& model, const InitialState& state,
       theta = z.real(), phi = -z.imag(), theta_rate = z_rate.real(), phi_rate = -z_rate.imag();
     }
     out.t.push_back(t);
-    out.theta.push_back(theta);
-    out.phi.push_back(phi);
-    out.theta_rate.push_back(theta_rate);
-    out.phi_rate.push_back(phi_rate);
+    out.theta.push_back(theta + 0.0);  // + 0.0: no negative zeros in reports
+    out.phi.push_back(phi + 0.0);
+    out.theta_rate.push_back(theta_rate + 0.0);
+    out.phi_rate.push_back(phi_rate + 0.0);
   }
   return out;
 }

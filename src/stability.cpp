@@ -136,8 +136,8 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
   StabilityVerdict v;
   for (auto mu : {mu1, mu2}) {
     const auto r = square_root(mu);
-    v.eigenvalues.push_back(-r);
-    v.eigenvalues.push_back(r);
+    v.eigenvalues.push_back(-r + 0.0);  // + 0.0: no negative zeros in reports
+    v.eigenvalues.push_back(r + 0.0);
   }
   std::sort(v.eigenvalues.begin(), v.eigenvalues.end(), [](auto x, auto y) {
     return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();

@@ -25,10 +25,10 @@ namespace heavytop {
 /// the examples' horizons (docs/nonlinear.md, "Accuracy").
 struct NonlinearOptions {
   /// Relative tolerance per step (dimensionless), in [1e-15, 1].
-  double rtol = 1e-11;
+  double rtol = 1e-12;
   /// Absolute tolerance per step, > 0: on the attitude quaternion (dimensionless), the
   /// angular velocity (rad/s) and the spin angle (rad) alike.
-  double atol = 1e-11;
+  double atol = 1e-12;
   /// Largest number of attempted steps (accepted + rejected) before giving up, > 0.
   std::size_t max_steps = 100'000'000;
 

@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# The command line as scripts use it (SPEC sections 1, 4, 5): exit codes, one-line errors
+# naming the key, no file written on bad input, SPEC's JSON keys and CSV columns.
+set -u
+H=$(realpath "${HEAVYTOP:?set HEAVYTOP to the heavytop binary}")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+passes=0
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+
+cat > ok.toml <<'TOML'
+[body]
+A = 1.0
+B = 1.0
+C = 2.0
+mass = 1.0
+gravity = 1.0
+length = 1.0
+[motion]
+spin = 3.0
+TOML
+
+# ---- stability --format json: SPEC keys, and C^2 w0^2 = 4 A m g R gives w0 = 1 --------------
+"$H" stability --config ok.toml --format json > out.json
+check "stability json exit 0" test $? -eq 0
+check "stability json keys" python3 - out.json <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert set(d["body"]) == {"A", "B", "C", "mass", "gravity", "length"}
+assert d["spin"] == 3.0
+for m in ("first-order", "body-fixed", "linearized"):
+    e = d["models"][m]
+    for k in ("stable", "critical_spin", "stable_spin_intervals", "eigenvalues"):
+        assert k in e, (m, k)
+    assert len(e["eigenvalues"]) == 4 and all(len(p) == 2 for p in e["eigenvalues"])
+    if e["stable"]:
+        f = e["frequencies"]
+        assert f == sorted(f) and len(set(f)) == len(f)
+assert abs(d["models"]["first-order"]["critical_spin"] - 1.0) < 1e-12
+assert d["models"]["first-order"]["stable_spin_intervals"] == [[1.0, None]]
+assert d["models"]["body-fixed"]["critical_spin"] is not None
+PY
+
+# Options override the file; hanging body stable at every spin -> critical 0, interval [0, null].
+"$H" stability --config ok.toml --length -1 --format json > hang.json
+check "hanging body critical 0" python3 -c '
+import json; d = json.load(open("hang.json"))
+assert d["body"]["length"] == -1.0
+assert d["models"]["first-order"]["critical_spin"] == 0.0
+assert d["models"]["first-order"]["stable_spin_intervals"] == [[0.0, None]]'
+
+# No spin stabilises the body-fixed model of a sphere-like body: critical_spin null.
+"$H" stability --config ok.toml --A 2 --B 2 --C 2 --format json > sphere.json
+check "A=B=C body-fixed never stable" python3 -c '
+import json; d = json.load(open("sphere.json"))
+assert d["models"]["body-fixed"]["critical_spin"] is None
+assert d["models"]["body-fixed"]["stable_spin_intervals"] == []'
+
+# ---- bad input: exit 2, one line naming the key, no file created or changed -----------------
+refused() {  # refused KEY ARGS... : exit 2, one stderr line containing KEY, --output untouched
+  local key=$1; shift
+  echo "previous content" > keep.txt
+  "$H" "$@" --output new.out 2> err.txt > /dev/null; local code=$?
+  "$H" "$@" --output keep.txt 2> /dev/null > /dev/null
+  [ $code -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -qF -- "$key" err.txt &&
+    [ ! -e new.out ] && [ "$(cat keep.txt)" = "previous content" ] &&
+    [ -z "$(ls -A | grep -v -e '^ok.toml$' -e '^keep.txt$' -e '^err.txt$' -e '\.json$' -e '\.toml$' -e '\.csv$')" ] ||
+    { echo "  $* -> exit $code: $(cat err.txt)"; return 1; }
+}
+for cmd in stability simulate; do
+  check "$cmd A > 0" refused body.A $cmd --config ok.toml --A 0
+  check "$cmd B > 0" refused body.B $cmd --config ok.toml --B -1
+  check "$cmd C > 0" refused body.C $cmd --config ok.toml --C 0
+  check "$cmd mass > 0" refused body.mass $cmd --config ok.toml --mass -1
+  check "$cmd mass NaN" refused body.mass $cmd --config ok.toml --mass nan
+  check "$cmd gravity >= 0" refused body.gravity $cmd --config ok.toml --gravity -9.81
+  check "$cmd gravity finite" refused body.gravity $cmd --config ok.toml --gravity inf
+  check "$cmd length finite" refused body.length $cmd --config ok.toml --length nan
+  check "$cmd A + B >= C" refused body.C $cmd --config ok.toml --C 2.5
+  check "$cmd B + C >= A" refused body.A $cmd --config ok.toml --A 3.5
+  check "$cmd C + A >= B" refused body.B $cmd --config ok.toml --B 3.5
+  check "$cmd spin finite" refused motion.spin $cmd --config ok.toml --spin nan
+  check "$cmd missing config" refused -- --config $cmd --config missing.toml
+  check "$cmd bad format" refused --format $cmd --config ok.toml --format xml
+  check "$cmd unknown option" refused --frobnicate $cmd --config ok.toml --frobnicate 1
+done
+
+printf '[body]\nA = 1.0\nB = 1.0\nC = 2.0\nmass = -1.0\nlength = 1.0\n' > neg.toml
+check "negative mass in file" refused body.mass stability --config neg.toml
+printf '[body]\nA = 1.0\nB = 1.0\nC = 2.0\nmass = 1.0\nlength = 1.0\ncolour = 3\n' > unknown_key.toml
+check "unknown key" refused body.colour stability --config unknown_key.toml
+printf '[body]\nA = 1.0\nB = 1.0\nC = 2.0\nmass = 1.0\nlength = 1.0\n[extras]\nx = 1\n' > unknown_section.toml
+check "unknown section" refused extras stability --config unknown_section.toml
+printf '[body]\nA = 1.0\nB = 1.0\nC = 2.0\nmass = 1.0\n' > missing_key.toml
+check "missing length" refused body.length stability --config missing_key.toml
+printf '[body]\nA = 1.0\nB = "one"\nC = 2.0\nmass = 1.0\nlength = 1.0\n' > string.toml
+check "string value" refused body.B stability --config string.toml
+printf '[body]\nA = 1.0\nB = = 1\n' > malformed.toml
+check "malformed TOML" refused malformed.toml stability --config malformed.toml
+check "samples >= 2" refused --samples simulate --config ok.toml --samples 1
+check "t-end > 0" refused --t-end simulate --config ok.toml --t-end 0
+check "unknown model" refused --model simulate --config ok.toml --model quadratic
+check "rtol > 0" refused --rtol simulate --config ok.toml --rtol -1
+
+# gravity is optional and defaults to 9.81; integer values are numbers too.
+printf '[body]\nA = 1\nB = 1\nC = 2\nmass = 1\nlength = 1\n' > nogravity.toml
+"$H" stability --config nogravity.toml --format json > g.json
+check "gravity defaults to 9.81" python3 -c '
+import json; d = json.load(open("g.json")); assert d["body"]["gravity"] == 9.81
+assert abs(d["models"]["first-order"]["critical_spin"] - 9.81 ** 0.5) < 1e-12'
+
+# ---- simulate --format csv: header, N rows at t_i = i T / (N - 1) ---------------------------
+for model in first-order body-fixed linearized nonlinear; do
+  "$H" simulate --config ok.toml --theta0 0.01 --model $model --t-end 2 --samples 5 --format csv --output $model.csv
+  check "simulate $model exit 0" test $? -eq 0
+  check "simulate $model csv" python3 - $model.csv <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+assert rows[0][:5] == ["t", "theta", "phi", "theta_rate", "phi_rate"], rows[0]
+assert len(rows) == 6
+for i, r in enumerate(rows[1:]):
+    assert abs(float(r[0]) - i * 2 / 4) < 1e-15
+assert abs(float(rows[1][1]) - 0.01) < 1e-15 and float(rows[1][2]) == 0.0
+PY
+done
+check "no temporary files left" test -z "$(ls -A | grep tmp)"
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]
