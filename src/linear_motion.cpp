@@ -123,8 +123,10 @@ Trajectory simulate_linear(const LinearModel& model, const InitialState& state,
   const LinearSolution solution = closed_form_solution(model, state.spin, x0);
   const bool body_frame = model.kind == LinearModelKind::Linearized;
   Trajectory out;
-  out.reserve(times.size());
-  for (double t : times) {
+  const std::size_t n = times.size();
+  for (auto* column : {&out.t, &out.theta, &out.phi, &out.theta_rate, &out.phi_rate}) column->resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = times[i];
     const LinearState x = method == LinearMethod::Analytic
                               ? evaluate(solution, t)
                               : matrix_exponential_solution(model, state.spin, x0, t);
@@ -135,11 +137,11 @@ Trajectory simulate_linear(const LinearModel& model, const InitialState& state,
       const Complex z = turn * zb, z_rate = turn * (zb_rate + Complex(0.0, state.spin) * zb);
       theta = z.real(), phi = -z.imag(), theta_rate = z_rate.real(), phi_rate = -z_rate.imag();
     }
-    out.t.push_back(t);
-    out.theta.push_back(theta + 0.0);  // + 0.0: no negative zeros in reports
-    out.phi.push_back(phi + 0.0);
-    out.theta_rate.push_back(theta_rate + 0.0);
-    out.phi_rate.push_back(phi_rate + 0.0);
+    out.t[i] = t;
+    out.theta[i] = theta + 0.0;  // + 0.0: no negative zeros in reports
+    out.phi[i] = phi + 0.0;
+    out.theta_rate[i] = theta_rate + 0.0;
+    out.phi_rate[i] = phi_rate + 0.0;
   }
   return out;
 }

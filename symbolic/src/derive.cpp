@@ -21,6 +21,8 @@ matrix map_entries(const matrix& a, ex (*f)(const ex&)) {
 
 ex normal_of(const ex& e) { return GiNaC::normal(e); }
 
+matrix ex_to_matrix(const ex& e) { return GiNaC::ex_to<matrix>(e); }
+
 bool is_zero_matrix(const matrix& a) {
   for (unsigned i = 0; i < a.rows(); ++i)
     for (unsigned j = 0; j < a.cols(); ++j)
@@ -40,20 +42,25 @@ struct RouteEquations {
 
 RouteEquations route_equations(Method method, Sequence sequence, int order) {
   const Symbols& s = symbols();
-  // The body-attached frame turns with the body: its psi is the spin angle, psi' = omega0.
-  const bool body_frame = method == Method::EulerBody;
-  const auto coords = coordinates(body_frame);
+  const auto coords = coordinates();
   const matrix inertia = {{s.A, 0, 0}, {0, s.B, 0}, {0, 0, s.C}};
   const matrix e3 = column(0, 0, 1);
 
-  // Kinematics at the requested order; psi stays small in the table even for the body frame,
-  // which is exactly the step the paper calls an error.
+  // Kinematics of the axis frame at the requested order, every angle and rate small. Truncating
+  // R first and then the products loses nothing up to `order`, as d/dt never lowers the order.
   const matrix R = truncate(frame_rotation(sequence), order);
   const matrix R_t = time_derivative(R, coords);
-  const matrix frame_omega = truncate(vee(R.transpose().mul(R_t)), order);
-  const matrix omega =
-      body_frame ? frame_omega : matrix(frame_omega.add(e3.mul_scalar(s.omega0)));
-  const matrix up = truncate(R.transpose().mul(e3), order);  // the vertical n on i, j, k
+  matrix frame_omega = truncate(vee(R.transpose().mul(R_t)), order);  // w1 on i, j, k
+  matrix up = truncate(R.transpose().mul(e3), order);                 // the vertical n on i, j, k
+  matrix omega = frame_omega.add(e3.mul_scalar(s.omega0));           // the body's w
+  if (method == Method::EulerBody) {
+    // The frame attached to the body: psi' = omega0 and w1 = w, while the small-angle results
+    // are kept (psi = 0 in the table). This is the step the paper calls an error.
+    const GiNaC::exmap spin = {{s.psi, 0}, {s.psi_t, s.omega0}, {s.psi_tt, 0}};
+    frame_omega = ex_to_matrix(frame_omega.subs(spin));
+    up = ex_to_matrix(up.subs(spin));
+    omega = frame_omega;
+  }
 
   RouteEquations out;
   switch (method) {

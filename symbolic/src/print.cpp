@@ -71,14 +71,15 @@ void collect_symbols(const ex& e, std::vector<std::string>& names) {
   for (size_t i = 0; i < e.nops(); ++i) collect_symbols(e.op(i), names);
 }
 
+bool printed_negative(const ex& term);
+
 // Sort key of a term of a sum: falling powers of lambda, positive terms first, then by the
 // first variable the term holds, then by its parameters.
 std::tuple<int, int, int, std::vector<int>> term_key(const ex& term) {
   const Symbols& s = symbols();
   const int lambda_degree = term.has(s.lambda) ? term.degree(s.lambda) : 0;
-  const auto [c, rest] = split_coefficient(term);
   std::vector<std::string> names;
-  collect_symbols(rest, names);
+  collect_symbols(split_coefficient(term).second, names);
   int first_variable = 99;
   std::vector<int> parameters;
   for (const auto& n : names) {
@@ -89,7 +90,7 @@ std::tuple<int, int, int, std::vector<int>> term_key(const ex& term) {
       parameters.push_back(parameter_rank(n));
   }
   std::sort(parameters.begin(), parameters.end());
-  return {-lambda_degree, c.is_negative() ? 1 : 0, first_variable, parameters};
+  return {-lambda_degree, printed_negative(term) ? 1 : 0, first_variable, parameters};
 }
 
 // The rank of the symbol a sum is "about": its highest-ranked parameter (C in C - B).
@@ -101,14 +102,36 @@ int leading_rank(const ex& sum) {
   return best;
 }
 
-// True if the term of `sum` holding its leading symbol is negative: B - C, not C - B.
+bool leads_negative(const ex& sum);
+
+// The sign a term is printed with: its coefficient's, turned once for every sum factor that
+// is printed turned round (odd powers only).
+bool printed_negative(const ex& term) {
+  const auto [c, rest] = split_coefficient(term);
+  bool negative = c.is_negative();
+  std::vector<ex> factors;
+  if (is_a<GiNaC::mul>(rest))
+    for (size_t i = 0; i < rest.nops(); ++i) factors.push_back(rest.op(i));
+  else
+    factors.push_back(rest);
+  for (const ex& f : factors) {
+    const ex base = is_a<GiNaC::power>(f) ? f.op(0) : f;
+    const ex exponent = is_a<GiNaC::power>(f) ? f.op(1) : ex(1);
+    if (is_a<GiNaC::add>(base) && is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_odd() &&
+        leads_negative(base))
+      negative = !negative;
+  }
+  return negative;
+}
+
+// True if the term of `sum` holding its leading symbol prints negative: B - C, not C - B.
 bool leads_negative(const ex& sum) {
   const int lead = leading_rank(sum);
   for (size_t i = 0; i < sum.nops(); ++i) {
     std::vector<std::string> names;
     collect_symbols(sum.op(i), names);
     for (const auto& n : names)
-      if (parameter_rank(n) == lead) return split_coefficient(sum.op(i)).first.is_negative();
+      if (parameter_rank(n) == lead) return printed_negative(sum.op(i));
   }
   return false;
 }
@@ -123,12 +146,12 @@ class Printer {
     if (is_a<GiNaC::add>(e)) return wrap(sum(e), context > 0);
     if (is_a<numeric>(e) || is_a<GiNaC::mul>(e) || is_a<GiNaC::power>(e)) {
       const auto [negative, magnitude] = signed_term(e);
-      // sqrt(x) and x^n need no parentheses as a factor; products and signs do.
-      const bool compound = is_a<GiNaC::mul>(e) || magnitude.find('/') != std::string::npos ||
-                            (is_a<numeric>(e) && !ex_to<numeric>(e).is_integer());
-      return wrap((negative ? "-" : "") + magnitude,
-                  (negative && context > 0) || (compound && context > 1) ||
-                      (compound && context > 0 && !latex() && magnitude.find('/') != std::string::npos));
+      // A factor needs parentheses when signed or a fraction; a power's base when compound.
+      const bool fraction = !latex() && magnitude.find('/') != std::string::npos;
+      const bool compound = is_a<GiNaC::mul>(e) || is_a<GiNaC::power>(e) || fraction;
+      return wrap((negative ? "-" : "") + magnitude, (negative && context > 0) ||
+                                                         (fraction && context == 1) ||
+                                                         (compound && context > 1));
     }
     if (is_a<GiNaC::function>(e)) return function(e);
     if (is_a<GiNaC::relational>(e)) return print(e.op(0)) + " = " + print(e.op(1));
@@ -213,7 +236,7 @@ class Printer {
       }
       numeric x = ex_to<numeric>(exponent);
       if (is_a<GiNaC::add>(base) && x.is_integer() && leads_negative(base)) {
-        base = (-base).expand();
+        base = -base;  // numeric * sum distributes without expanding the terms
         if (x.is_odd()) c = -c;
       }
       if (x.is_negative())
