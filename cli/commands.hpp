@@ -13,5 +13,7 @@ using Action = std::function<void()>;
 Action add_stability_command(CLI::App& app);
 Action add_simulate_command(CLI::App& app);
 Action add_derive_command(CLI::App& app);
+Action add_compare_command(CLI::App& app);
+Action add_sweep_command(CLI::App& app);
 
 }  // namespace heavytop::cli

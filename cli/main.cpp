@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   add(cli::add_stability_command);
   add(cli::add_simulate_command);
   add(cli::add_derive_command);
+  add(cli::add_compare_command);
+  add(cli::add_sweep_command);
 
   try {
     app.parse(argc, argv);

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "formats.hpp"
 #include "heavytop/linear_motion.hpp"
 #include "heavytop/nonlinear.hpp"
 
@@ -39,7 +40,9 @@ const std::vector<double>& column(const Trajectory& tr, std::size_t i) {
   return i < 5 ? *base[i] : tr.extra[i - 5].second;
 }
 
-std::string to_csv(const Trajectory& tr) {
+}  // namespace
+
+std::string trajectory_csv(const Trajectory& tr) {
   const auto names = columns(tr);
   fmt::memory_buffer out;
   for (std::size_t c = 0; c < names.size(); ++c) fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", names[c]);
@@ -51,6 +54,8 @@ std::string to_csv(const Trajectory& tr) {
   }
   return fmt::to_string(out);
 }
+
+namespace {
 
 std::string to_json(const std::string& model, const Inputs& in, const Trajectory& tr,
                     const NonlinearSummary* summary) {
@@ -131,7 +136,7 @@ Action add_simulate_command(CLI::App& app) {
                                     o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic);
     write_output(inputs->output(), inputs->format() == "json"
                                        ? to_json(o->model, *inputs, tr, nonlinear ? &summary : nullptr)
-                                       : to_csv(tr));
+                                       : trajectory_csv(tr));
   };
 }
 

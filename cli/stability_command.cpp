@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "formats.hpp"
 #include "heavytop/stability.hpp"
 
 namespace heavytop::cli {
@@ -14,12 +15,8 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-struct ModelReport {
-  LinearModelKind kind;
-  StabilityVerdict verdict;
-  std::vector<SpinInterval> intervals;
-  std::optional<double> critical;
-};
+
+}  // namespace
 
 std::vector<ModelReport> analyse(const Body& body, double spin) {
   std::vector<ModelReport> reports;
@@ -32,9 +29,13 @@ std::vector<ModelReport> analyse(const Body& body, double spin) {
   return reports;
 }
 
+namespace {
+
 Json optional_number(const std::optional<double>& x) { return x ? Json(*x) : Json(nullptr); }
 
-std::string to_json(const Body& body, double spin, const std::vector<ModelReport>& reports) {
+}  // namespace
+
+std::string stability_json(const Body& body, double spin, const std::vector<ModelReport>& reports) {
   Json out;
   out["body"] = {{"A", body.A},       {"B", body.B},
                  {"C", body.C},       {"mass", body.mass},
@@ -58,6 +59,8 @@ std::string to_json(const Body& body, double spin, const std::vector<ModelReport
   return out.dump(2) + "\n";
 }
 
+namespace {
+
 std::string intervals_text(const std::vector<SpinInterval>& intervals) {
   if (intervals.empty()) return "none";
   std::string text;
@@ -68,7 +71,9 @@ std::string intervals_text(const std::vector<SpinInterval>& intervals) {
   return text;
 }
 
-std::string to_text(const Body& body, double spin, const std::vector<ModelReport>& reports) {
+}  // namespace
+
+std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports) {
   std::ostringstream out;
   out << fmt::format("Body: A = {:g}, B = {:g}, C = {:g} kg m^2; m g R = {:g} N m ({})\n", body.A,
                      body.B, body.C, body.mgR(),
@@ -107,8 +112,6 @@ std::string to_text(const Body& body, double spin, const std::vector<ModelReport
   return out.str();
 }
 
-}  // namespace
-
 Action add_stability_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "stability", "Linear stability of the first-order, body-fixed and linearized models at a spin");
@@ -117,8 +120,8 @@ Action add_stability_command(CLI::App& app) {
     inputs->resolve();
     const auto reports = analyse(inputs->body(), inputs->state().spin);
     write_output(inputs->output(), inputs->format() == "json"
-                                       ? to_json(inputs->body(), inputs->state().spin, reports)
-                                       : to_text(inputs->body(), inputs->state().spin, reports));
+                                       ? stability_json(inputs->body(), inputs->state().spin, reports)
+                                       : stability_text(inputs->body(), inputs->state().spin, reports));
   };
 }
 

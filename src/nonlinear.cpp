@@ -221,7 +221,6 @@ class Integrator {
 
   double time() const { return t_; }
   double previous_time() const { return t_old_; }
-  const State& state() const { return x_; }
 
   // One accepted step from time() on; afterwards interpolate() covers [previous_time(), time()].
   void step() {
@@ -229,12 +228,18 @@ class Integrator {
     x_old_ = x_;
     dxdt_old_ = dxdt_;
     t_old_ = t_;
+    int rejections = 0;
     for (;;) {
       if (attempts_ >= max_steps_)
         throw std::runtime_error(fmt::format(
             "nonlinear: more than max_steps = {} integration steps before t = {:.6g} s "
             "(raise max_steps or loosen --rtol/--atol)",
             max_steps_, t_));
+      if (!(t_ + dt_ > t_))  // lost in the rounding of t (or not a number)
+        throw std::runtime_error(fmt::format(
+            "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot "
+            "be met)",
+            t_));
       ++attempts_;
       const double t_before = t_;
       const auto result = controlled_.try_step(equations_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_);
@@ -246,8 +251,8 @@ class Integrator {
         break;
       }
       if (summary_) ++summary_->rejected_steps;
-      // Rounding, not the method, limits a step this short: the tolerance cannot be met.
-      if (!(dt_ > 1e-14 * std::max(std::abs(t_), 1e-300) && dt_ > 0.0) || !std::isfinite(dt_))
+      // A long run of rejections: rounding, not the method, limits the error.
+      if (++rejections > kMaxConsecutiveRejections)
         throw std::runtime_error(fmt::format(
             "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot "
             "be met)",
@@ -267,14 +272,18 @@ class Integrator {
 
  private:
   double initial_step(const NonlinearOptions& o, double horizon) const {
-    // Hairer's first guess: 1% of |x| / |x'| in the error norm of the controller.
+    // Hairer's first guess, 1% of |x| / |x'| in the controller's error norm; the weights are
+    // kept away from 0 (a tiny atol on a zero component) so that the ratio stays finite.
+    double largest = 0.0;
+    for (double v : x_) largest = std::max(largest, std::abs(v));
     double d0 = 0.0, d1 = 0.0;
     for (std::size_t i = 0; i < x_.size(); ++i) {
-      const double sc = o.atol + o.rtol * std::abs(x_[i]);
+      const double sc = std::max(o.atol + o.rtol * std::abs(x_[i]), o.rtol * largest);
       d0 += (x_[i] / sc) * (x_[i] / sc);
       d1 += (dxdt_[i] / sc) * (dxdt_[i] / sc);
     }
     double h = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 : 0.01 * std::sqrt(d0 / d1);
+    if (!(h > 0.0 && std::isfinite(h))) h = 1e-6;
     if (horizon > 0.0) h = std::min(h, horizon);
     return h;
   }
@@ -310,6 +319,8 @@ class Integrator {
         std::max(s.max_relative_axial_momentum_drift,
                  std::abs(q.axial_momentum - initial_.axial_momentum) / scales_.momentum);
   }
+
+  static constexpr int kMaxConsecutiveRejections = 100;
 
   const Body& body_;
   Equations<Symmetric> equations_;

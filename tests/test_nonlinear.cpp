@@ -136,7 +136,7 @@ TEST(Nonlinear, AsymmetricTumblingBodyConservesEnergyAndVerticalMomentum) {
   const Body body = make_body(1.0, 1.5, 2.0, 1.0);
   const InitialState s = make_state(0.5, 1.2, -0.5, 0.7, -0.4);
   NonlinearSummary summary;
-  const Trajectory tr = simulate_nonlinear(body, s, sample_times(200.0, 2001), {}, &summary);
+  const Trajectory tr = simulate_nonlinear(body, s, sample_times(100.0, 1001), {}, &summary);
   // Scales that cannot vanish: T + |m g R| for energy, sqrt(2 max(A, B, C) that) >= |I w|.
   const RigidBodyState x0 = initial_rigid_body_state(s);
   const double kinetic = integrals(body, x0).E - body.mgR() * x0.attitude(2, 2);
@@ -154,7 +154,7 @@ TEST(Nonlinear, AsymmetricTumblingBodyConservesEnergyAndVerticalMomentum) {
   EXPECT_GT(axial_change, 1e-2);  // not an integral when A != B, and the column shows it
   EXPECT_FALSE(summary.symmetric);
   // The body really tumbles: its axis swings from near the top to near the bottom.
-  const TiltExtremes range = tilt_extremes(body, s, 200.0);
+  const TiltExtremes range = tilt_extremes(body, s, 100.0);
   EXPECT_GT(range.max_tilt, 2.5);
   EXPECT_LT(range.min_tilt, 0.5);
   RecordProperty("energy_drift", sci(e));
@@ -479,6 +479,24 @@ TEST(Nonlinear, FailsWithARuntimeErrorWhenMaxStepsIsExceeded) {
     EXPECT_NE(message.find("max_steps"), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
+}
+
+TEST(Nonlinear, FailsWithARuntimeErrorWhenTheToleranceCannotBeMet) {
+  // Pure relative accuracy 1e-15 on components that start at 0: rounding alone exceeds it.
+  NonlinearOptions o;
+  o.rtol = 1e-15;
+  o.atol = 1e-300;
+  ASSERT_TRUE(o.IsValid(nullptr));
+  NonlinearSummary summary;
+  try {
+    simulate_nonlinear(example_toy_top(), make_state(200.0, 0.05), {1.0}, o, &summary);
+    FAIL() << "no exception";
+  } catch (const InvalidInput&) {
+    FAIL() << "a numerical failure is not bad input";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("tolerance"), std::string::npos) << e.what();
+  }
+  EXPECT_GT(summary.rejected_steps, 0u);
 }
 
 TEST(Nonlinear, EmptyAndZeroTimesNeedNoStep) {

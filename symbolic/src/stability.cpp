@@ -12,7 +12,51 @@ namespace {
 using GiNaC::ex;
 using GiNaC::matrix;
 
-bool positive(const ex& e) { return e.info(GiNaC::info_flags::positive); }
+matrix ex_to_matrix(const ex& e) { return GiNaC::ex_to<matrix>(e); }
+
+bool has_symbol(const ex& e) {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return true;
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (has_symbol(e.op(i))) return true;
+  return false;
+}
+
+// The sign of `e` for every positive value of the symbols, as far as its structure shows it
+// (+1, -1, or 0 for unknown): constants such as 3 - 2 sqrt(2) are evaluated, products and
+// sums of known signs combined.
+int sign(const ex& e) {
+  if (e.info(GiNaC::info_flags::positive)) return 1;
+  if (e.info(GiNaC::info_flags::negative)) return -1;
+  if (!has_symbol(e)) {
+    const ex v = GiNaC::evalf(e);
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real()) return 0;
+    const double x = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+    return x > 1e-12 ? 1 : x < -1e-12 ? -1 : 0;
+  }
+  if (GiNaC::is_a<GiNaC::mul>(e)) {
+    int product = 1;
+    for (size_t i = 0; i < e.nops(); ++i) product *= sign(e.op(i));
+    return product;
+  }
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    const int first = sign(e.op(0));
+    for (size_t i = 1; i < e.nops(); ++i)
+      if (sign(e.op(i)) != first) return 0;
+    return first;
+  }
+  if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1))) {
+    const int base = sign(e.op(0));
+    const GiNaC::numeric x = GiNaC::ex_to<GiNaC::numeric>(e.op(1));
+    if (base == 1) return 1;
+    if (base == -1 && x.is_integer()) return x.is_even() ? 1 : -1;
+  }
+  return 0;
+}
+
+bool positive(const ex& e) {
+  return sign(e) == 1 || sign(GiNaC::collect_common_factors(e.expand())) == 1 ||
+         sign(factor_radicals(e)) == 1;
+}
 
 bool is_zero_matrix(const matrix& a) {
   for (unsigned i = 0; i < a.rows(); ++i)
@@ -103,6 +147,22 @@ StabilityCondition stability_condition(const matrix& M, const matrix& G, const m
     return out;
   }
   if (!positive(a0)) out.all_of.push_back({a0, 0, true});
+
+  const ex D = GiNaC::normal((pow(a2, 2) - 4 * a4 * a0).expand());
+  if (D.is_zero()) {
+    // A double pair lambda0^2 = mu0 = -a2/(2 a4) at every parameter value: semisimple only if
+    // the whole matrix M mu0 + G lambda0 + K vanishes, i.e. G = 0 and K = -mu0 M.
+    const ex mu0 = -a2 / (2 * a4);
+    if (is_zero_matrix(G) && is_zero_matrix(ex_to_matrix(K.add(M.mul_scalar(mu0))))) {
+      out.steps.push_back("D = 0 identically, with G = 0 and K = -mu0 M: a semisimple double "
+                          "pair, stable when mu0 < 0, i.e. a2 > 0");
+      require_above(out, a2, 0);
+    } else {
+      out.never = true;
+      out.steps.push_back("D = 0 identically: a double pair with one eigenvector (Jordan block)");
+    }
+    return out;
+  }
 
   // At D = a2^2 - 4 a4 a0 = 0 the two pairs merge into a double pair +-lambda0 != 0, and
   // M lambda0^2 + G lambda0 + K keeps G lambda0 != 0 off the diagonal: rank 1, one eigenvector,

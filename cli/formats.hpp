@@ -1,0 +1,33 @@
+#pragma once
+// The text, JSON and CSV forms of each command's results, shared by the commands and the report.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heavytop/compare.hpp"
+#include "heavytop/stability.hpp"
+
+namespace heavytop::cli {
+
+/// One linear model's stability at a spin, and its stable spins.
+struct ModelReport {
+  LinearModelKind kind;
+  StabilityVerdict verdict;
+  std::vector<SpinInterval> intervals;
+  std::optional<double> critical;
+};
+
+/// Every linear model of `body` at spin w0 (rad/s).
+std::vector<ModelReport> analyse(const Body& body, double spin);
+std::string stability_json(const Body& body, double spin, const std::vector<ModelReport>& reports);
+std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports);
+
+/// SPEC's simulate CSV: t,theta,phi,theta_rate,phi_rate then any extra columns.
+std::string trajectory_csv(const Trajectory& trajectory);
+
+std::string comparison_json(const Comparison& comparison);
+std::string comparison_csv(const Comparison& comparison);
+std::string comparison_text(const Comparison& comparison, double t_end);
+
+}  // namespace heavytop::cli

@@ -1,0 +1,165 @@
+// heavytop sweep: a stability map over one or two parameters, resumable when written to a file.
+//
+// With --output FILE the rows go to FILE.partial as they are computed (in grid order, whole
+// lines), beside FILE.partial.args, which records the arguments. Run again with the same
+// arguments after an interruption and it goes on from the last complete row; at the end
+// FILE.partial is renamed to FILE. Nothing is lost or written twice.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "heavytop/linear_models.hpp"
+#include "heavytop/sweep.hpp"
+
+namespace heavytop::cli {
+namespace {
+
+struct SweepSettings {
+  std::vector<std::string> vary;
+  std::string model;
+  SweepOptions options;
+};
+
+std::string header(const std::vector<SweepAxis>& axes, bool nonlinear) {
+  std::string h;
+  for (const auto& a : axes) h += a.key + ",";
+  for (std::size_t m = 0; m < kLinearModels.size(); ++m) h += fmt::format("{}{}", m ? "," : "", name(kLinearModels[m]));
+  if (nonlinear) h += ",nonlinear";
+  return h + "\n";
+}
+
+std::string rows(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& verdicts) {
+  fmt::memory_buffer out;
+  for (std::size_t r = 0; r < verdicts.size(); ++r) {
+    std::size_t index = begin + r, stride = 1;
+    for (const auto& a : axes) stride *= a.count;
+    for (const auto& a : axes) {
+      stride /= a.count;
+      fmt::format_to(std::back_inserter(out), "{},", a.value(index / stride % a.count));
+    }
+    const auto& v = verdicts[r];
+    fmt::format_to(std::back_inserter(out), "{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]));
+    if (v.nonlinear) fmt::format_to(std::back_inserter(out), ",{}", int(*v.nonlinear));
+    out.push_back('\n');
+  }
+  return fmt::to_string(out);
+}
+
+/// Everything the rows depend on, in one line: a resumed sweep must have the same.
+std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o) {
+  const Body& b = in.body();
+  const InitialState& s = in.state();
+  std::string f = fmt::format("heavytop-sweep-v1 body {} {} {} {} {} {} state {} {} {} {} {}", b.A, b.B, b.C, b.mass,
+                              b.gravity, b.length, s.spin, s.theta0, s.phi0, s.theta_rate0, s.phi_rate0);
+  for (const auto& a : axes) f += fmt::format(" vary {}={}:{}:{}", a.key, a.start, a.stop, a.count);
+  if (o.nonlinear)
+    f += fmt::format(" nonlinear {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol);
+  return f + "\n";
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Progress {
+ public:
+  explicit Progress(std::size_t total) : total_(total), enabled_(isatty(STDERR_FILENO) && total > 0) {}
+  void show(std::size_t done) const {
+    if (!enabled_) return;
+    const int width = 40, filled = static_cast<int>(width * done / total_);
+    std::cerr << fmt::format("\rsweep [{:<{}}] {}/{}", std::string(filled, '#'), width, done, total_) << std::flush;
+  }
+  ~Progress() {
+    if (enabled_) std::cerr << "\n";
+  }
+
+ private:
+  std::size_t total_;
+  bool enabled_;
+};
+
+}  // namespace
+
+Action add_sweep_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("sweep", "A stability map: each model's verdict over a grid of one or two parameters");
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv"});
+  auto s = std::make_shared<SweepSettings>();
+  cmd->add_option("--vary", s->vary, "KEY=START:STOP:COUNT, KEY a body key, spin, B/A or C/A (once or twice)")
+      ->required()
+      ->expected(1, 2)
+      ->take_all();
+  cmd->add_option("--model", s->model, "nonlinear: add the column `nonlinear`, the verdict of a simulation")
+      ->check(CLI::IsMember({"nonlinear"}));
+  cmd->add_option("--horizon", s->options.horizon, "s, simulated time of each nonlinear run")->default_str("100");
+  cmd->add_option("--max-tilt", s->options.max_tilt, "rad, a nonlinear run is stable if its tilt stays below")->default_str("0.5");
+  cmd->add_option("--rtol", s->options.integrator.rtol, "nonlinear: relative tolerance per step");
+  cmd->add_option("--atol", s->options.integrator.atol, "nonlinear: absolute tolerance per step");
+  return [inputs, s] {
+    inputs->resolve();
+    if (s->vary.size() > 2) throw InvalidInput("--vary", "give one or two parameters");
+    std::vector<SweepAxis> axes;
+    for (const auto& v : s->vary) axes.push_back(parse_sweep_axis(v));
+    s->options.nonlinear = s->model == "nonlinear";
+    validate_sweep(inputs->body(), inputs->state(), axes, s->options);
+
+    const std::size_t total = grid_size(axes);
+    const std::string& path = inputs->output();
+    const bool to_file = !path.empty() && path != "-";
+    const std::string partial = path + ".partial", args_file = path + ".partial.args";
+    const std::string args = fingerprint(*inputs, axes, s->options);
+    const std::string head = header(axes, s->options.nonlinear);
+
+    std::size_t done = 0;
+    std::FILE* out = stdout;
+    if (to_file) {
+      namespace fs = std::filesystem;
+      if (fs::exists(partial) && fs::exists(args_file) && read_file(args_file) == args) {
+        std::string content = read_file(partial);
+        content.erase(content.rfind('\n') == std::string::npos ? 0 : content.rfind('\n') + 1);  // drop a torn line
+        if (content.starts_with(head)) {
+          done = static_cast<std::size_t>(std::count(content.begin(), content.end(), '\n')) - 1;
+          fs::resize_file(partial, content.size());
+        }
+      }
+      if (done == 0) {
+        write_output(args_file, args);
+        write_output(partial, head);
+      } else {
+        std::cerr << fmt::format("heavytop: resuming the sweep at row {} of {} ({})\n", done + 1, total, partial);
+      }
+      out = std::fopen(partial.c_str(), "ab");
+      if (!out) throw Failure(fmt::format("--output: cannot write '{}'", partial));
+    } else {
+      std::fputs(head.c_str(), out);
+    }
+
+    // Chunks in grid order: each is computed in parallel, then appended whole and flushed.
+    const std::size_t chunk = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 8 : 256, 20000);
+    Progress progress(total);
+    while (done < total) {
+      const std::size_t end = std::min(total, done + chunk);
+      const std::string text = rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
+      if (std::fwrite(text.data(), 1, text.size(), out) != text.size() || std::fflush(out) != 0)
+        throw Failure("--output: write failed");
+      done = end;
+      progress.show(done);
+    }
+    if (to_file) {
+      std::fclose(out);
+      std::filesystem::rename(partial, path);
+      std::filesystem::remove(args_file);
+    }
+  };
+}
+
+}  // namespace heavytop::cli

@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// Every approximate model against the full nonlinear body, from one state over one horizon.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// The two frequencies a person sees in the axis's motion, measured from a trajectory.
+struct MotionFrequencies {
+  std::optional<double> nutation;    ///< rad/s, 2 pi / mean time between tilt maxima (none if the tilt is constant)
+  std::optional<double> precession;  ///< rad/s, mean rate of the axis's azimuth atan2(k_eta, k_xi) over whole nutation periods
+};
+
+/// Measures the nutation and precession of a sampled motion (needs >= 2 tilt maxima for the
+/// nutation; interior maxima are refined by a parabola through three samples).
+MotionFrequencies measure_frequencies(const Trajectory& trajectory);
+
+/// One approximate model against `nonlinear`.
+struct ModelComparison {
+  std::string model;                ///< SPEC model name
+  Trajectory trajectory;            ///< its motion at the common times
+  double max_angle_error = 0.0;     ///< rad, max over the samples of max(|d theta|, |d phi|)
+  double final_angle_error = 0.0;   ///< rad, the same at the last sample
+  MotionFrequencies frequencies;    ///< measured from its own trajectory
+  std::optional<double> nutation_relative_error;    ///< |nutation - truth| / truth
+  std::optional<double> precession_relative_error;  ///< |precession - truth| / |truth|
+};
+
+/// The truth and every approximate model: first-order, body-fixed, linearized, and
+/// lagrange-exact when A = B (a check of the integrator: its error should be ~1e-9 rad).
+struct Comparison {
+  Trajectory nonlinear;                 ///< the truth
+  MotionFrequencies nonlinear_frequencies;
+  NonlinearSummary summary;             ///< what the integrator did
+  std::vector<ModelComparison> models;  ///< in SPEC order
+};
+
+/// Runs every model from `state` at `times` (s) and compares it with `nonlinear`.
+Comparison compare_models(const Body& body, const InitialState& state,
+                          const std::vector<double>& times, const NonlinearOptions& options = {});
+
+}  // namespace heavytop

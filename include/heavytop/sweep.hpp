@@ -1,0 +1,71 @@
+#pragma once
+/// \file
+/// Stability maps: each linear model's verdict (and optionally the nonlinear body's practical
+/// verdict) over a grid of one or two parameters.
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// One axis of a grid, KEY=START:STOP:COUNT: COUNT values from START to STOP inclusive.
+struct SweepAxis {
+  std::string key;  ///< a body key (A, B, C, mass, gravity, length), "spin", or "B/A", "C/A"
+  double start = 0.0;
+  double stop = 0.0;
+  std::size_t count = 1;
+
+  /// The i-th value, START + i (STOP - START) / (COUNT - 1), in the key's SI unit.
+  double value(std::size_t i) const;
+};
+
+/// Parses "KEY=START:STOP:COUNT". Throws InvalidInput (key "--vary") naming the rule broken.
+SweepAxis parse_sweep_axis(std::string_view text);
+
+/// The number of grid points: the product of the axes' counts.
+std::size_t grid_size(const std::vector<SweepAxis>& axes);
+
+/// The body and state at grid point `index` (row-major, the first axis slowest). A ratio
+/// B/A or C/A changes the numerator and holds the denominator at its base value.
+void apply_grid_point(const std::vector<SweepAxis>& axes, std::size_t index, Body& body,
+                      InitialState& state);
+
+/// Settings of a sweep.
+struct SweepOptions {
+  bool nonlinear = false;       ///< also judge each point by a nonlinear simulation
+  double horizon = 100.0;       ///< s, simulated time of each nonlinear run (> 0)
+  double max_tilt = 0.5;        ///< rad, the nonlinear run is "stable" if its tilt stays <= this
+  NonlinearOptions integrator;  ///< tolerances of the nonlinear runs
+
+  /// True if every setting is in range; else false with a one-line "key: rule" in `why`.
+  bool IsValid(std::string* why) const;
+};
+
+/// The verdicts at one grid point.
+struct SweepVerdict {
+  std::array<bool, 3> linear{};   ///< stable? first-order, body-fixed, linearized (kLinearModels order)
+  std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
+};
+
+/// Throws InvalidInput (key "--vary", naming the grid point) unless every grid point gives a
+/// valid body and state, and, with options.nonlinear, the start is tilted (else the upright
+/// body never moves) by less than max_tilt.
+void validate_sweep(const Body& base, const InitialState& base_state,
+                    const std::vector<SweepAxis>& axes, const SweepOptions& options);
+
+/// The verdicts at grid points [begin, end), in grid order, computed in parallel on every
+/// core (OpenMP); the result does not depend on the number of threads.
+std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& base_state,
+                                         const std::vector<SweepAxis>& axes,
+                                         const SweepOptions& options, std::size_t begin,
+                                         std::size_t end);
+
+}  // namespace heavytop

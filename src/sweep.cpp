@@ -1,0 +1,153 @@
+#include "heavytop/sweep.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <exception>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "heavytop/stability.hpp"
+
+namespace heavytop {
+namespace {
+
+constexpr std::string_view kKeys[] = {"A", "B", "C", "mass", "gravity", "length", "spin", "B/A", "C/A"};
+
+double parse_number(std::string_view text, const char* what) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+    throw InvalidInput("--vary", fmt::format("{} '{}' must be a finite number", what, text));
+  return value;
+}
+
+}  // namespace
+
+double SweepAxis::value(std::size_t i) const {
+  if (count <= 1) return start;
+  return start + (stop - start) * static_cast<double>(i) / static_cast<double>(count - 1);
+}
+
+SweepAxis parse_sweep_axis(std::string_view text) {
+  const auto eq = text.find('=');
+  const std::string_view rule = "must be KEY=START:STOP:COUNT with KEY one of A, B, C, mass, gravity, length, spin, B/A, C/A";
+  if (eq == std::string_view::npos) throw InvalidInput("--vary", std::string(rule));
+  SweepAxis axis;
+  axis.key = std::string(text.substr(0, eq));
+  if (std::find(std::begin(kKeys), std::end(kKeys), axis.key) == std::end(kKeys))
+    throw InvalidInput("--vary", fmt::format("unknown key '{}': {}", axis.key, rule));
+  const std::string_view range = text.substr(eq + 1);
+  const auto c1 = range.find(':'), c2 = range.find(':', c1 == std::string_view::npos ? c1 : c1 + 1);
+  if (c1 == std::string_view::npos || c2 == std::string_view::npos) throw InvalidInput("--vary", std::string(rule));
+  axis.start = parse_number(range.substr(0, c1), "START");
+  axis.stop = parse_number(range.substr(c1 + 1, c2 - c1 - 1), "STOP");
+  const std::string_view count = range.substr(c2 + 1);
+  long long n = 0;
+  const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), n);
+  if (error != std::errc() || end != count.data() + count.size() || n < 1 || n > 100'000'000)
+    throw InvalidInput("--vary", fmt::format("COUNT '{}' must be an integer in [1, 100000000]", count));
+  axis.count = static_cast<std::size_t>(n);
+  return axis;
+}
+
+std::size_t grid_size(const std::vector<SweepAxis>& axes) {
+  std::size_t n = 1;
+  for (const auto& a : axes) n *= a.count;
+  return n;
+}
+
+void apply_grid_point(const std::vector<SweepAxis>& axes, std::size_t index, Body& body,
+                      InitialState& state) {
+  const Body base = body;
+  for (std::size_t k = axes.size(); k-- > 0;) {
+    const SweepAxis& a = axes[k];
+    const double v = a.value(index % a.count);
+    index /= a.count;
+    if (a.key == "A") body.A = v;
+    else if (a.key == "B") body.B = v;
+    else if (a.key == "C") body.C = v;
+    else if (a.key == "mass") body.mass = v;
+    else if (a.key == "gravity") body.gravity = v;
+    else if (a.key == "length") body.length = v;
+    else if (a.key == "spin") state.spin = v;
+    else if (a.key == "B/A") body.B = v * base.A;
+    else if (a.key == "C/A") body.C = v * base.A;
+  }
+}
+
+bool SweepOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (!(std::isfinite(horizon) && horizon > 0.0)) return fail("--horizon: must be finite and > 0");
+  if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI)) return fail("--max-tilt: must be in (0, pi] rad");
+  return integrator.IsValid(why);
+}
+
+void validate_sweep(const Body& base, const InitialState& base_state,
+                    const std::vector<SweepAxis>& axes, const SweepOptions& options) {
+  if (std::string why; !options.IsValid(&why)) {
+    const auto colon = why.find(':');
+    throw InvalidInput(why.substr(0, colon), why.substr(colon == std::string::npos ? 0 : colon + 2));
+  }
+  for (std::size_t i = 0; i < axes.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (axes[i].key == axes[j].key) throw InvalidInput("--vary", fmt::format("'{}' is varied twice", axes[i].key));
+  // Every grid point is checked, before any output: cheap next to the analysis.
+  const std::size_t n = grid_size(axes);
+  for (std::size_t i = 0; i < n; ++i) {
+    Body body = base;
+    InitialState state = base_state;
+    apply_grid_point(axes, i, body, state);
+    try {
+      validate(body);
+      validate(state);
+    } catch (const InvalidInput& e) {
+      std::string where;
+      for (std::size_t k = 0, index = i; k < axes.size(); ++k) {
+        std::size_t stride = 1;
+        for (std::size_t m = k + 1; m < axes.size(); ++m) stride *= axes[m].count;
+        where += fmt::format("{}{}={}", k ? ", " : "", axes[k].key, axes[k].value(index / stride % axes[k].count));
+      }
+      throw InvalidInput("--vary", fmt::format("at {} the body breaks {}: {}", where, e.key(), e.rule()));
+    }
+  }
+  if (options.nonlinear) {
+    const double start_tilt = std::acos(std::cos(base_state.theta0) * std::cos(base_state.phi0));
+    if (start_tilt == 0.0 && base_state.theta_rate0 == 0.0 && base_state.phi_rate0 == 0.0)
+      throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. --theta0 1e-3): the upright body never moves");
+    if (start_tilt >= options.max_tilt)
+      throw InvalidInput("--max-tilt", "must exceed the initial tilt");
+  }
+}
+
+std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& base_state,
+                                         const std::vector<SweepAxis>& axes,
+                                         const SweepOptions& options, std::size_t begin,
+                                         std::size_t end) {
+  std::vector<SweepVerdict> out(end - begin);
+  std::exception_ptr failure;
+  std::once_flag failed;
+  const auto count = static_cast<std::ptrdiff_t>(end - begin);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    try {
+      Body body = base;
+      InitialState state = base_state;
+      apply_grid_point(axes, begin + static_cast<std::size_t>(i), body, state);
+      SweepVerdict& v = out[static_cast<std::size_t>(i)];
+      for (std::size_t m = 0; m < kLinearModels.size(); ++m)
+        v.linear[m] = linear_stability(linear_model(kLinearModels[m], body), state.spin).stable;
+      if (options.nonlinear)
+        v.nonlinear = max_tilt(body, state, options.horizon, options.max_tilt, options.integrator) <= options.max_tilt;
+    } catch (...) {
+      std::call_once(failed, [&] { failure = std::current_exception(); });
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  return out;
+}
+
+}  // namespace heavytop
