@@ -3,8 +3,13 @@
 // once the command line has been parsed. Actions throw InvalidInput (exit 2) or Failure (1).
 
 #include <functional>
+#include <optional>
+#include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "heavytop/body.hpp"
+#include "heavytop/state.hpp"
 
 namespace heavytop::cli {
 
@@ -15,5 +20,10 @@ Action add_simulate_command(CLI::App& app);
 Action add_derive_command(CLI::App& app);
 Action add_compare_command(CLI::App& app);
 Action add_sweep_command(CLI::App& app);
+Action add_report_command(CLI::App& app);
+
+/// Writes the report for `body` and `state` into folder `dir` (created if needed).
+void write_report(const std::string& dir, const Body& body, const InitialState& state,
+                  std::optional<double> t_end);
 
 }  // namespace heavytop::cli

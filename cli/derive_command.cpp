@@ -197,6 +197,12 @@ std::string derivation_text(const Derivation& d) {
   out << "  G = " << matrix_text(d.G) << "\n";
   out << "  K = " << matrix_text(d.K) << "\n";
   out << model_note(d) << "\n";
+  if (identify(d) == PaperModel::Four)
+    out << "Note: (4) is the exact linearisation of the top only for A = B (erratum E3); "
+           "`heavytop stability` sets it beside the true one.\n";
+  if (identify(d) == PaperModel::Five)
+    out << "Note: the paper calls (5) erroneous: psi = omega0 t is not small, so the small-angle "
+           "table does not apply to a frame attached to the body.\n";
   out << "\nCharacteristic polynomial det(M lambda^2 + G lambda + K)"
       << (identify(d) == PaperModel::Four ? " (A B times the paper's (8))" : "") << ":\n";
   out << "  " << text(d.characteristic_polynomial) << "\n";

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   add(cli::add_derive_command);
   add(cli::add_compare_command);
   add(cli::add_sweep_command);
+  add(cli::add_report_command);
 
   try {
     app.parse(argc, argv);

@@ -10,7 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libginac-dev libcln-dev             # computer algebra for the symbolic target
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
-  gnuplot-nox                         # figures (PNG and SVG)
+  gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
 )
 
 missing=()

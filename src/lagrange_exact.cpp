@@ -1,1 +1,589 @@
-// placeholder: being written (issue 6)
+#include "heavytop/lagrange_exact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
+
+namespace heavytop {
+
+namespace {
+
+// Double precision throughout: Boost.Math would otherwise evaluate in long double (x87),
+// about ten times slower, for no accuracy the closed form needs.
+using MathPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
+constexpr double kPi = 3.141592653589793;
+constexpr double kTwoPi = 6.283185307179586;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double rf(double x, double y, double z) { return boost::math::ellint_rf(x, y, z, MathPolicy()); }
+double rj(double x, double y, double z, double p) {
+  return boost::math::ellint_rj(x, y, z, p, MathPolicy());
+}
+
+using Detail = LagrangeTop::Detail;
+using Pole = LagrangeTop::Detail::Pole;
+using Complex = std::complex<double>;
+
+// ---- Jacobi elliptic functions ----------------------------------------------------------------
+
+struct Jacobi {
+  double sn, cn, dn;
+};
+
+// Theta series (DLMF 22.2.4) with the common factor 2 q^(1/4) of theta_1, theta_2 divided
+// out: a handful of terms for q <= 0.3, no cancellation since theta_4 >= 1 - 2q > 0.
+Jacobi jacobi_theta(const Detail& d, double r) {
+  const double v = d.theta_freq * r;
+  const Complex z1(std::cos(v), std::sin(v));
+  const Complex w = z1 * z1;
+  Complex odd = z1, even = w;
+  double t1 = 0.0, t2 = 0.0, t3 = 1.0, t4 = 1.0, sign = 1.0;
+  for (int n = 0; n < d.theta_terms; ++n) {
+    t1 += sign * d.theta_odd[n] * odd.imag();
+    t2 += d.theta_odd[n] * odd.real();
+    t3 += d.theta_even[n] * even.real();
+    t4 -= sign * d.theta_even[n] * even.real();
+    sign = -sign;
+    odd *= w;
+    even *= w;
+  }
+  const double inv4 = 1.0 / t4;
+  return {d.sn_scale * t1 * inv4, d.cn_scale * t2 * inv4, d.dn_scale * t3 * inv4};
+}
+
+// Descending Landen transformation (A&S 16.4) on the AGM of (1, k') precomputed from k'^2,
+// which stays accurate as k -> 1 where q -> 1 and the theta series would need many terms.
+Jacobi jacobi_landen(const Detail& d, double r) {
+  if (d.kc2 == 0.0) {  // k = 1: the separatrix
+    const double sech = 1.0 / std::cosh(r);
+    return {std::tanh(r), sech, sech};
+  }
+  double phi = d.landen_scale * r;
+  for (int n = d.landen_levels; n >= 1; --n)
+    phi = 0.5 * (phi + std::asin(d.landen_ratio[n - 1] * std::sin(phi)));
+  const double sn = std::sin(phi), cn = std::cos(phi);
+  return {sn, cn, std::sqrt(cn * cn + d.kc2 * sn * sn)};
+}
+
+Jacobi jacobi(const Detail& d, double r) {
+  return d.theta_terms > 0 ? jacobi_theta(d, r) : jacobi_landen(d, r);
+}
+
+// K(k) from the AGM of (1, k') (and the Landen table), K'(k), and the theta coefficients.
+void prepare_jacobi(Detail& d) {
+  // AGM of (1, k'), with c_{n+1} = c_n^2 / (4 a_{n+1}) to avoid the cancellation in a - b.
+  double a = 1.0, b = std::sqrt(d.kc2), c = d.k;
+  int levels = 0;
+  while (c > kEps * a && levels < 16 && b > 0.0) {
+    const double a1 = 0.5 * (a + b);
+    b = std::sqrt(a * b);
+    c = c * c / (4.0 * a1);
+    a = a1;
+    d.landen_ratio[levels++] = c / a;
+  }
+  d.landen_levels = levels;
+  d.landen_scale = std::ldexp(a, levels);
+  d.periodic = d.kc2 > 0.0;
+  d.K = d.periodic ? kPi / (2.0 * a) : kInf;
+
+  d.theta_terms = 0;
+  if (!d.periodic) return;
+  // Nome q = exp(-pi K'/K), K' from the AGM of (1, k).
+  double a2 = 1.0, b2 = d.k;
+  for (int i = 0; i < 64 && std::abs(a2 - b2) > kEps * a2; ++i) {
+    const double a1 = 0.5 * (a2 + b2);
+    b2 = std::sqrt(a2 * b2);
+    a2 = a1;
+  }
+  const double q = b2 > 0.0 ? std::exp(-kPi * (kPi / (2.0 * a2)) / d.K) : 0.0;
+  if (q > 0.3) return;  // Landen descent instead
+  // Terms n = 0..M with q^((M+1)(M+2)) and 2 q^((M+1)^2) below 2^-60.
+  int m = 0;
+  while (m < 7 && q > 0.0 &&
+         (std::pow(q, (m + 1) * (m + 2)) > 0x1p-60 || 2.0 * std::pow(q, (m + 1) * (m + 1)) > 0x1p-60))
+    ++m;
+  d.theta_terms = m + 1;
+  double t2_0 = 0.0, t3_0 = 1.0, t4_0 = 1.0;
+  for (int n = 0; n <= m; ++n) {
+    d.theta_odd[n] = q > 0.0 ? std::pow(q, n * (n + 1)) : (n == 0 ? 1.0 : 0.0);
+    d.theta_even[n] = q > 0.0 ? 2.0 * std::pow(q, (n + 1) * (n + 1)) : 0.0;
+    t2_0 += d.theta_odd[n];
+    t3_0 += d.theta_even[n];
+    t4_0 += ((n % 2 == 0) ? -1.0 : 1.0) * d.theta_even[n];
+  }
+  d.sn_scale = t3_0 / t2_0;
+  d.cn_scale = t4_0 / t2_0;
+  d.dn_scale = t4_0 / t3_0;
+  d.theta_freq = kPi / (2.0 * d.K);
+}
+
+// ---- Elliptic integrals of the third kind -----------------------------------------------------
+
+// J(r) = int_0^r dtau / (1 - n sn^2(tau)) for |r| <= K, from sn, cn, dn of r.
+// Direct (0 <= n < 1): Pi = F + (n/3) sn^3 R_J(cn^2, dn^2, 1, 1 - n sn^2) (DLMF 19.25.14) with
+// F = r and 1 - n sn^2 = cn^2 + (1 - n) sn^2: no cancellation even as n -> 1.
+// n < 0: A&S 17.7.15 maps it to N = (k^2 - n)/(1 - n) in (k^2, 1), where the three terms
+// share the sign of r (no cancellation for large |n|, the near-vertical passages).
+double third_kind(const Pole& p, double r, const Jacobi& j) {
+  const double s2 = j.sn * j.sn, c2 = j.cn * j.cn, dn2 = j.dn * j.dn;
+  if (p.mode == 1) {
+    if (j.sn == 0.0) return r;
+    return r + p.n * j.sn * s2 * rj(c2, dn2, 1.0, c2 + p.one_minus_n * s2) / 3.0;
+  }
+  double pi_n = 0.0;
+  if (p.c1 != 0.0)
+    pi_n = j.sn == 0.0 ? r : r + p.N * j.sn * s2 * rj(c2, dn2, 1.0, c2 + p.one_minus_N * s2) / 3.0;
+  return p.c1 * pi_n + p.c2 * r + p.c3 * std::atan(p.p2 * j.sn * j.cn / j.dn);
+}
+
+// 2 Pi(n, k), the increase of J over a period 2K.
+double third_kind_complete2(const Pole& p, const Detail& d) {
+  if (p.mode == 1) return 2.0 * (d.K + p.n * rj(0.0, d.kc2, 1.0, p.one_minus_n) / 3.0);
+  const double pi_n = p.c1 != 0.0 ? d.K + p.N * rj(0.0, d.kc2, 1.0, p.one_minus_N) / 3.0 : 0.0;
+  return 2.0 * (p.c1 * pi_n + p.c2 * d.K);
+}
+
+// The pole of phi' at u = +-1: phi' = P/(1 - u) + Q/(1 + u). `one_a`, `one_b` are 1 -+ u at
+// the two roots, `dn` the change of 1 -+ u from root a to root b's direction (-d or +d).
+void prepare_pole(Pole& p, double residue, double one_a, double one_b, double signed_d,
+                  const Detail& d) {
+  p = Pole{};
+  p.residue = residue;
+  if (one_a == 0.0) {  // the root a is the vertical itself: sqrt(1 -+ u) ~ sn
+    p.signed_form = 1;
+    return;
+  }
+  if (one_b == 0.0) {  // the root b is the vertical: sqrt(1 -+ u) ~ cn
+    p.signed_form = 2;
+    return;
+  }
+  if (residue == 0.0) return;
+  // 1 -+ u = one_a (1 - n sn^2) with n = -signed_d / one_a, 1 - n = one_b / one_a.
+  p.coefficient = residue / (one_a * d.lambda);
+  p.n = -signed_d / one_a;
+  p.one_minus_n = one_b / one_a;
+  if (p.n == 0.0) return;
+  if (p.n > 0.0) {
+    p.mode = 1;
+  } else {
+    p.mode = 2;
+    const double m = -p.n, k2 = d.k * d.k;
+    p.N = (k2 + m) / (1.0 + m);
+    p.one_minus_N = d.kc2 / (1.0 + m);
+    p.c1 = m * d.kc2 / ((1.0 + m) * (m + k2));
+    p.c2 = k2 / (k2 + m);
+    p.c3 = std::sqrt(m / ((k2 + m) * (1.0 + m)));
+    p.p2 = std::sqrt(m * p.N);
+  }
+  if (d.periodic) p.complete2 = third_kind_complete2(p, d);
+}
+
+// ---- Roots of the cubic -----------------------------------------------------------------------
+
+// p(x) = p[0] + p[1] x + p[2] x^2 + p[3] x^3.
+struct Poly {
+  double c[4] = {};
+  double operator()(double x) const { return ((c[3] * x + c[2]) * x + c[1]) * x + c[0]; }
+  double slope(double x) const { return (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1]; }
+};
+
+// The root of p in (lo, hi), p > 0 just above lo and < 0 just below hi when `positive_at_lo`
+// (the reverse otherwise). Newton steps inside the bracket, bisection when Newton leaves it.
+// The end values are never evaluated: their signs are known exactly, rounding may not be.
+double bracketed_root(const Poly& p, double lo, double hi, bool positive_at_lo) {
+  double x = 0.5 * (lo + hi);
+  for (int it = 0; it < 400; ++it) {
+    const double fx = p(x);
+    if (fx == 0.0) return x;
+    if ((fx > 0.0) == positive_at_lo) lo = x; else hi = x;
+    const double dfx = p.slope(x);
+    double next = dfx != 0.0 ? x - fx / dfx : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - x) <= 0.5 * kEps * std::abs(x) || hi - lo <= 2.0 * kEps * std::max(std::abs(lo), std::abs(hi)))
+      return next;
+    x = next;
+  }
+  return x;
+}
+
+// The first root x >= 0 of g where the motion turns (g >= 0 on [0, x]), given g(0) >= 0 and
+// g(e) <= 0 at the end e >= 0 (u = +-1). `end_is_root`: g(e) == 0 exactly (L_zeta = +-L_3);
+// then e is the turning point if g decreases there (`slope_end` < 0), otherwise the third root.
+double turning_root(const Poly& g, double e, bool end_is_root, double slope_end) {
+  if (e <= 0.0) return 0.0;
+  Poly q = g;
+  if (g.c[0] == 0.0) {  // the state is at a root: x = 0, or the motion leaves it forwards
+    if (g.c[1] <= 0.0) return 0.0;
+    q.c[0] = g.c[1], q.c[1] = g.c[2], q.c[2] = g.c[3], q.c[3] = 0.0;
+  }
+  if (!end_is_root) return bracketed_root(q, 0.0, e, true);
+  if (slope_end <= 0.0) return e;
+  // e is the third root: divide it out; the quotient is < 0 at 0 and > 0 at e.
+  Poly r;
+  r.c[2] = q.c[3];
+  r.c[1] = q.c[2] + e * r.c[2];
+  r.c[0] = q.c[1] + e * r.c[1];
+  return bracketed_root(r, 0.0, e, false);
+}
+
+double tilt_from(double one_minus, double one_plus) {
+  return one_minus <= 1.0 ? 2.0 * std::asin(std::sqrt(0.5 * one_minus))
+                          : kPi - 2.0 * std::asin(std::sqrt(0.5 * one_plus));
+}
+
+// ---- The canonical motion ---------------------------------------------------------------------
+
+// The motion with the reference rotations about the vertical and the body axis left out:
+// k = R_zeta(phi) (0, -sigma, u), sigma = sin(tilt) carried with a sign through a vertical.
+struct Canonical {
+  double u, du;            // k_zeta and its rate (1/s)
+  double sigma, dsigma;    // signed sin(tilt) and its rate (1/s)
+  double phi_rate_sigma;   // phi' sigma (rad/s)
+  double phi, psi;         // rad, the Euler angles phi and psi, reduced to about [-3 pi, 3 pi]
+};
+
+Canonical canonical(const Detail& d, double t) {
+  Canonical c;
+  if (!(d.lambda > 0.0)) {  // constant tilt
+    c.u = d.u0;
+    c.du = 0.0;
+    c.sigma = d.sin_tilt0;
+    c.dsigma = 0.0;
+    c.phi_rate_sigma = d.phi_rate * d.sin_tilt0;
+    c.phi = std::remainder(d.phi_rate * t, kTwoPi);
+    c.psi = std::remainder(d.psi_rate * t, kTwoPi);
+    return c;
+  }
+  // Whole periods out: tau = r + 2 K N with |r| <= K; the cost does not depend on t.
+  const double tau = std::fma(d.lambda, t, d.tau0);
+  double periods = 0.0, r = tau;
+  if (d.periodic) {
+    periods = std::nearbyint(tau / (2.0 * d.K));
+    r = std::fma(-2.0 * d.K, periods, tau);
+  }
+  const double parity = std::fmod(periods, 2.0) == 0.0 ? 1.0 : -1.0;  // sn, cn flip per period
+  const Jacobi j = jacobi(d, r);
+  const double s2 = j.sn * j.sn, c2 = j.cn * j.cn;
+  c.u = d.u_a + d.d * s2;
+  c.du = 2.0 * d.d * d.lambda * j.sn * j.cn * j.dn;
+  // 1 - u and 1 + u as sums of like-signed terms (exact near the vertical).
+  const double one_minus = d.d >= 0.0 ? d.one_minus_b + d.d * c2 : d.one_minus_a - d.d * s2;
+  const double one_plus = d.d >= 0.0 ? d.one_plus_a + d.d * s2 : d.one_plus_b - d.d * c2;
+  // sqrt(1 - u), sqrt(1 + u) and their rates; signed where the axis passes a vertical.
+  auto factor = [&](const Pole& p, double one, double& s, double& ds) {
+    if (p.signed_form == 1) {
+      s = d.sqrt_abs_d * j.sn * parity;
+      ds = d.sqrt_abs_d * d.lambda * j.cn * j.dn * parity;
+    } else if (p.signed_form == 2) {
+      s = d.sqrt_abs_d * j.cn * parity;
+      ds = -d.sqrt_abs_d * d.lambda * j.sn * j.dn * parity;
+    } else {
+      s = std::sqrt(one);
+      ds = 0.0;  // set below from du
+    }
+  };
+  double sm, dsm, sp, dsp;
+  factor(d.pole[0], one_minus, sm, dsm);
+  factor(d.pole[1], one_plus, sp, dsp);
+  if (d.pole[0].signed_form == 0) dsm = -c.du / (2.0 * sm);
+  if (d.pole[1].signed_form == 0) dsp = c.du / (2.0 * sp);
+  c.sigma = sm * sp;
+  c.dsigma = dsm * sp + sm * dsp;
+  // phi' sigma = P sqrt(1+u)/sqrt(1-u) + Q sqrt(1-u)/sqrt(1+u): finite through a vertical.
+  c.phi_rate_sigma = 0.0;
+  if (d.pole[0].signed_form == 0) c.phi_rate_sigma += d.pole[0].residue * sp / sm;
+  if (d.pole[1].signed_form == 0) c.phi_rate_sigma += d.pole[1].residue * sm / sp;
+
+  const double j0 = d.pole[0].mode ? third_kind(d.pole[0], r, j) : 0.0;
+  const double j1 = d.pole[1].mode ? third_kind(d.pole[1], r, j) : 0.0;
+  const double a0 = d.pole[0].coefficient * j0, a1 = d.pole[1].coefficient * j1;
+  c.phi = std::remainder(periods * d.phi_per_period_mod, kTwoPi) + a0 + a1;
+  c.psi = std::remainder(periods * d.psi_per_period_mod, kTwoPi) +
+          d.spin_rate_linear * (r / d.lambda) - a0 + a1;
+  return c;
+}
+
+// The axis k, its rate, and e^{i phi} with the reference rotation included.
+struct AxisFull {
+  Eigen::Vector3d k, k_rate;
+  Complex e_phi;
+  Canonical c;
+};
+
+AxisFull axis_full(const Detail& d, double t) {
+  AxisFull a;
+  a.c = canonical(d, t);
+  a.e_phi = Complex(d.phi_ref_cos, d.phi_ref_sin) * Complex(std::cos(a.c.phi), std::sin(a.c.phi));
+  // h = k_xi + i k_eta = -i sigma e^{i phi};  h' = -i e^{i phi} (sigma' + i phi' sigma).
+  const Complex minus_i_e = Complex(0.0, -1.0) * a.e_phi;
+  const Complex h = a.c.sigma * minus_i_e;
+  const Complex h_rate = minus_i_e * Complex(a.c.dsigma, a.c.phi_rate_sigma);
+  a.k = Eigen::Vector3d(h.real(), h.imag(), a.c.u);
+  a.k_rate = Eigen::Vector3d(h_rate.real(), h_rate.imag(), a.c.du);
+  return a;
+}
+
+Eigen::Matrix3d rot_z(double c, double s) {
+  Eigen::Matrix3d m;
+  m << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+  return m;
+}
+
+// R = R_z(phi) R_x(tilt) R_z(psi), the tilt given by (sigma, u) = (sin, cos).
+Eigen::Matrix3d euler_zxz(const Complex& e_phi, double sigma, double u, double psi) {
+  Eigen::Matrix3d rx;
+  rx << 1.0, 0.0, 0.0, 0.0, u, -sigma, 0.0, sigma, u;
+  return rot_z(e_phi.real(), e_phi.imag()) * rx * rot_z(std::cos(psi), std::sin(psi));
+}
+
+void require_finite_state(const RigidBodyState& s) {
+  if (!s.attitude.allFinite() || !s.omega.allFinite())
+    throw InvalidInput("state", "attitude and angular velocity must be finite");
+  if (!((s.attitude.transpose() * s.attitude - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <
+            1e-9 &&
+        s.attitude.determinant() > 0.0))
+    throw InvalidInput("state", "the attitude must be a rotation matrix");
+}
+
+}  // namespace
+
+// ---- Public API -------------------------------------------------------------------------------
+
+void validate_symmetric(const Body& body) {
+  validate(body);
+  if (std::abs(body.A - body.B) > kSymmetryTolerance * std::max(body.A, body.B))
+    throw InvalidInput("body.B",
+                       "lagrange-exact needs a symmetric body: B must equal A (to 1e-12 relative)");
+}
+
+LagrangeTop lagrange_top(const Body& body, const InitialState& initial) {
+  validate_symmetric(body);
+  validate(initial);
+  return lagrange_top(body, initial_rigid_body_state(initial));
+}
+
+LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state) {
+  validate_symmetric(body);
+  require_finite_state(state);
+
+  LagrangeTop top;
+  Detail& d = top.detail;
+  top.A = 0.5 * (body.A + body.B);
+  top.C = body.C;
+  top.mgR = body.mgR();
+  const double A = top.A, C = top.C;
+
+  // Everything from the state in body axes: gamma = R^T e_zeta, w.
+  const Eigen::Vector3d gamma = state.attitude.row(2).transpose();
+  const Eigen::Vector3d& w = state.omega;
+  const double u0 = gamma.z();
+  const double s02 = gamma.x() * gamma.x() + gamma.y() * gamma.y();  // sin^2(tilt), exact near 0
+  const double om = u0 > 0.0 ? s02 / (1.0 + u0) : 1.0 - u0;          // 1 - u0
+  const double op = u0 < 0.0 ? s02 / (1.0 - u0) : 1.0 + u0;          // 1 + u0
+  top.w3 = w.z();
+  const double b = C * top.w3 / A;
+  const double beta = 2.0 * top.mgR / A;
+  const double t_perp = w.x() * w.x() + w.y() * w.y();          // |k'|^2
+  const double p0 = w.x() * gamma.x() + w.y() * gamma.y();      // (k x k')_zeta = a - b u0
+  const double du0 = w.y() * gamma.x() - w.x() * gamma.y();     // k'_zeta = u0'
+  top.energy = 0.5 * (A * t_perp + C * top.w3 * top.w3) + top.mgR * u0;
+  top.vertical_momentum = A * p0 + C * top.w3 * u0;
+  top.axial_momentum = C * top.w3;
+
+  // f around u0, x = u - u0: g(x) = beta x^3 + c2 x^2 + c1 x + c0 with coefficients from the
+  // state itself (c0 = u0'^2; c1 vanishes at a steady precession without cancellation of E).
+  Poly g;
+  g.c[0] = du0 * du0;
+  g.c[1] = -s02 * beta - 2.0 * u0 * t_perp + 2.0 * p0 * b;
+  g.c[2] = 2.0 * u0 * beta - t_perp - b * b;
+  g.c[3] = beta;
+  const double P = 0.5 * (p0 - b * om);  // (a - b)/2: f(1) = -4 P^2
+  const double Q = 0.5 * (p0 + b * op);  // (a + b)/2: f(-1) = -4 Q^2
+  const double x_hi = turning_root(g, om, P == 0.0, -2.0 * (t_perp - beta * om));
+  Poly reflected = g;  // g(-y)
+  reflected.c[1] = -g.c[1];
+  reflected.c[3] = -g.c[3];
+  const double x_lo = -turning_root(reflected, op, Q == 0.0, -2.0 * (t_perp + beta * op));
+
+  // 1 - u_hi and 1 + u_lo from f(+-1) = -4 P^2, -4 Q^2 = beta prod(+-1 - u_i) when small:
+  // exact to rounding where the difference of the roots would not be.
+  const double one_minus_lo = om - x_lo, one_plus_hi = op + x_hi;
+  const double bm = -g.c[2] - beta * (x_lo + x_hi + om);  // beta (u_third - 1) > 0
+  const double bp = beta * op - g.c[2] - beta * (x_lo + x_hi);  // beta (u_third + 1) > 0
+  double one_minus_hi = om - x_hi, one_plus_lo = op + x_lo;
+  if (P == 0.0 && x_hi == om) one_minus_hi = 0.0;
+  else if (P != 0.0 && one_minus_hi < 0.5 && bm > 0.0 && one_minus_lo > 0.0)
+    one_minus_hi = 4.0 * P * P / (bm * one_minus_lo);
+  if (Q == 0.0 && x_lo == -op) one_plus_lo = 0.0;
+  else if (Q != 0.0 && one_plus_lo < 0.5 && bp > 0.0 && one_plus_hi > 0.0)
+    one_plus_lo = 4.0 * Q * Q / (bp * one_plus_hi);
+
+  top.u_min = u0 + x_lo;
+  top.u_max = u0 + x_hi;
+  top.u_third = beta != 0.0 ? u0 + (-g.c[2] - beta * (x_lo + x_hi)) / beta
+                            : (g.c[2] < 0.0 ? kInf : -kInf);
+  top.through_vertical = one_minus_hi == 0.0 && x_hi != x_lo;
+  top.through_downward = one_plus_lo == 0.0 && x_hi != x_lo;
+  d.u0 = u0;
+  d.sin_tilt0 = std::sqrt(s02);
+  // Bounds for nutation_bounds(): stored as the a/b pair below, and here for the tilt.
+  d.one_minus_a = one_minus_lo;  // overwritten below; kept consistent for constant tilt
+  d.one_plus_a = one_plus_lo;
+
+  // Root a: where tau = 0. beta >= 0: the lower root (u_far above), beta < 0: the upper.
+  const bool a_is_lo = beta >= 0.0;
+  const double x_a = a_is_lo ? x_lo : x_hi, x_b = a_is_lo ? x_hi : x_lo;
+  d.u_a = u0 + x_a;
+  d.d = x_b - x_a;
+  d.one_minus_a = a_is_lo ? one_minus_lo : one_minus_hi;
+  d.one_minus_b = a_is_lo ? one_minus_hi : one_minus_lo;
+  d.one_plus_a = a_is_lo ? one_plus_lo : one_plus_hi;
+  d.one_plus_b = a_is_lo ? one_plus_hi : one_plus_lo;
+  d.sqrt_abs_d = std::sqrt(std::abs(d.d));
+  d.spin_rate_linear = top.w3 - b;
+
+  // 4 lambda^2 = beta (u_third - u_a); k^2 = (u_b - u_a)/(u_third - u_a), k'^2 likewise.
+  const double four_lambda2 = -g.c[2] - beta * (2.0 * x_a + x_b);
+  top.constant_tilt = d.d == 0.0 || !(four_lambda2 > 0.0) || !std::isfinite(four_lambda2);
+  if (top.constant_tilt) {
+    // Sleeping top, steady precession or rest: u = u0, phi' and psi' constant.
+    top.u_min = top.u_max = u0;
+    top.through_vertical = top.through_downward = false;
+    d.lambda = 0.0;
+    d.d = 0.0;
+    d.u_a = u0;
+    if (s02 > 0.0) d.phi_rate = p0 / s02;
+    else d.phi_rate = u0 > 0.0 ? Q / op : P / om;  // at the vertical only phi + -psi matters
+    d.psi_rate = top.w3 - d.phi_rate * u0;
+    top.nutation_period = kInf;
+  } else {
+    d.lambda = 0.5 * std::sqrt(four_lambda2);
+    double k2 = beta * d.d / four_lambda2;
+    double kc2 = (-g.c[2] - beta * (x_a + 2.0 * x_b)) / four_lambda2;
+    k2 = std::clamp(k2, 0.0, 1.0);
+    kc2 = std::clamp(kc2, 0.0, 1.0);
+    if (k2 < kc2) kc2 = 1.0 - k2; else k2 = 1.0 - kc2;
+    d.k = std::sqrt(k2);
+    d.kc2 = kc2;
+    prepare_jacobi(d);
+
+    // tau0: sn^2(tau0) = (u0 - u_a)/(u_b - u_a), with the sign of the motion of u.
+    const double sa = std::sqrt(std::abs(x_a) / std::abs(d.d));
+    const double ca = std::sqrt(std::abs(x_b) / std::abs(d.d));
+    const double f0 = sa == 0.0 ? 0.0 : sa * rf(ca * ca, ca * ca + kc2 * sa * sa, 1.0);
+    d.tau0 = du0 * d.d < 0.0 ? -f0 : f0;
+
+    prepare_pole(d.pole[0], P, d.one_minus_a, d.one_minus_b, -d.d, d);
+    prepare_pole(d.pole[1], Q, d.one_plus_a, d.one_plus_b, d.d, d);
+    if (d.periodic) {
+      top.nutation_period = 2.0 * d.K / d.lambda;
+      top.precession_per_period = d.pole[0].coefficient * d.pole[0].complete2 +
+                                  d.pole[1].coefficient * d.pole[1].complete2;
+      top.spin_per_period = d.spin_rate_linear * top.nutation_period -
+                            d.pole[0].coefficient * d.pole[0].complete2 +
+                            d.pole[1].coefficient * d.pole[1].complete2;
+      // A passage through a vertical turns the signed sin(tilt) over each period: that is
+      // a further half turn of phi (and psi) per period for the axis in the fixed frame.
+      d.phi_per_period_mod = std::remainder(top.precession_per_period, kTwoPi);
+      d.psi_per_period_mod = std::remainder(top.spin_per_period, kTwoPi);
+      const int flips = (d.pole[0].signed_form != 0) + (d.pole[1].signed_form != 0);
+      if (flips % 2 == 1) {
+        top.precession_per_period += kPi;
+        top.spin_per_period += kPi;
+      }
+    } else {
+      top.nutation_period = kInf;
+    }
+  }
+
+  // The reference rotation about the vertical: h0 = e^{i phi_ref} H(0), h0' = e^{i phi_ref} H'(0),
+  // fitted from both (either may vanish, e.g. at the vertical).
+  d.phi_ref_cos = 1.0;
+  d.phi_ref_sin = 0.0;
+  d.psi_ref = 0.0;
+  const AxisFull a0 = axis_full(d, 0.0);
+  const Eigen::Vector3d k0 = state.attitude.col(2);
+  const Eigen::Vector3d k0_rate = state.attitude * Eigen::Vector3d(w.y(), -w.x(), 0.0);
+  const Complex h0(k0.x(), k0.y()), h0_rate(k0_rate.x(), k0_rate.y());
+  const Complex H0(a0.k.x(), a0.k.y()), H0_rate(a0.k_rate.x(), a0.k_rate.y());
+  const double scale2 = d.lambda * d.lambda + t_perp;
+  const Complex fit = std::conj(H0) * h0 + (scale2 > 0.0 ? 1.0 / scale2 : 1.0) * std::conj(H0_rate) * h0_rate;
+  if (std::abs(fit) > 0.0) {
+    d.phi_ref_cos = fit.real() / std::abs(fit);
+    d.phi_ref_sin = fit.imag() / std::abs(fit);
+  }
+  // The reference spin angle: R0 = R_z(phi_ref + Phi0) R_x R_z(Psi0 + psi_ref).
+  const Complex e_phi0 = Complex(d.phi_ref_cos, d.phi_ref_sin) * Complex(std::cos(a0.c.phi), std::sin(a0.c.phi));
+  const Eigen::Matrix3d m0 = euler_zxz(e_phi0, a0.c.sigma, a0.c.u, a0.c.psi);
+  const Eigen::Matrix3d x = m0.transpose() * state.attitude;
+  d.psi_ref = std::atan2(x(1, 0) - x(0, 1), x(0, 0) + x(1, 1));
+  return top;
+}
+
+NutationBounds nutation_bounds(const LagrangeTop& top) {
+  const Detail& d = top.detail;
+  NutationBounds n;
+  n.u_min = top.u_min;
+  n.u_max = top.u_max;
+  if (top.constant_tilt) {
+    n.min_tilt = n.max_tilt = std::atan2(d.sin_tilt0, d.u0);
+    return n;
+  }
+  const bool a_is_lo = d.d > 0.0;
+  const double om_lo = a_is_lo ? d.one_minus_a : d.one_minus_b;
+  const double op_lo = a_is_lo ? d.one_plus_a : d.one_plus_b;
+  const double om_hi = a_is_lo ? d.one_minus_b : d.one_minus_a;
+  const double op_hi = a_is_lo ? d.one_plus_b : d.one_plus_a;
+  n.min_tilt = tilt_from(om_hi, op_hi);
+  n.max_tilt = tilt_from(om_lo, op_lo);
+  return n;
+}
+
+double nutation_period(const LagrangeTop& top) { return top.nutation_period; }
+
+AxisMotion lagrange_axis(const LagrangeTop& top, double t) {
+  const AxisFull a = axis_full(top.detail, t);
+  return {a.k, a.k_rate};
+}
+
+AxisAngles lagrange_axis_angles(const LagrangeTop& top, double t) {
+  const AxisFull a = axis_full(top.detail, t);
+  return axis_angles(a.k, a.k_rate);
+}
+
+RigidBodyState lagrange_rigid_body_state(const LagrangeTop& top, double t) {
+  const Detail& d = top.detail;
+  const AxisFull a = axis_full(d, t);
+  RigidBodyState s;
+  s.attitude = euler_zxz(a.e_phi, a.c.sigma, a.c.u, a.c.psi + d.psi_ref);
+  // w = k x k' + w3 k in the fixed frame (the transverse part is k x k' for any body).
+  const Eigen::Vector3d w_fixed = a.k.cross(a.k_rate) + top.w3 * a.k;
+  s.omega = s.attitude.transpose() * w_fixed;
+  return s;
+}
+
+Trajectory simulate_lagrange_exact(const Body& body, const InitialState& initial,
+                                   const std::vector<double>& times) {
+  for (double t : times)
+    if (!std::isfinite(t)) throw InvalidInput("times", "must be finite");
+  const LagrangeTop top = lagrange_top(body, initial);
+  Trajectory out;
+  out.reserve(times.size());
+  for (double t : times) {
+    const AxisAngles a = lagrange_axis_angles(top, t);
+    out.t.push_back(t);
+    out.theta.push_back(a.theta);
+    out.phi.push_back(a.phi);
+    out.theta_rate.push_back(a.theta_rate);
+    out.phi_rate.push_back(a.phi_rate);
+  }
+  return out;
+}
+
+}  // namespace heavytop

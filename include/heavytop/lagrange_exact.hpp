@@ -1,2 +1,147 @@
 #pragma once
-// placeholder: being written (issue 6)
+/// \file
+/// `lagrange-exact` (SPEC section 3): the nonlinear motion of a dynamically symmetric body
+/// (A = B) in closed form, the reference the integrators are measured against
+/// (docs/integrators.md).
+///
+/// With u = cos(tilt) = k_zeta, the energy E, the vertical momentum L_zeta and the axial
+/// momentum L_3 = C w3 give u'^2 = f(u), the Lagrange top's cubic
+///     f(u) = (1 - u^2)(alpha - beta u) - (a - b u)^2,
+///     a = L_zeta / A,  b = L_3 / A,  alpha = (2 E - C w3^2) / A,  beta = 2 m g R / A.
+/// Between two roots u_a, u_b of f: u = u_a + (u_b - u_a) sn^2(tau, k), tau = lambda t + tau0.
+/// The azimuth of the axis (Euler angle phi of z-x-z Euler angles) and the spin angle psi are
+/// elliptic integrals of the third kind in tau. A sample at time t reduces tau modulo the
+/// nutation period and adds whole-period increments of phi and psi, so its cost does not
+/// depend on t. All the degenerate motions are handled: constant tilt (the sleeping top,
+/// steady precession), a tilt that passes through the upward or downward vertical
+/// (L_zeta = +-L_3), the hanging body (m g R < 0) and m g R = 0 (the free symmetric body,
+/// where f is a quadratic).
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "heavytop/body.hpp"
+#include "heavytop/frames.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// |A - B| / max(A, B) at or below which a body counts as symmetric (dimensionless); the same
+/// slack validate() allows the triangle inequalities. The transverse moment used is (A + B)/2.
+inline constexpr double kSymmetryTolerance = 1e-12;
+
+/// Throws InvalidInput for a body validate() refuses, and InvalidInput("body.B", ...) when
+/// A and B differ by more than kSymmetryTolerance relative.
+void validate_symmetric(const Body& body);
+
+/// The precomputed closed-form motion of one symmetric body from one state. Build it with
+/// lagrange_top(); every member is read-only data for callers (units as noted), the
+/// `detail` block is the evaluator's own and not part of the interface.
+struct LagrangeTop {
+  double A = 0.0;    ///< kg m^2, transverse moment of inertia about O ((A + B)/2 of the body)
+  double C = 0.0;    ///< kg m^2, axial moment of inertia about O
+  double mgR = 0.0;  ///< N m, m g R
+  double w3 = 0.0;   ///< rad/s, body-axis component of the angular velocity (constant)
+  double energy = 0.0;             ///< J, E = T + m g R k_zeta
+  double vertical_momentum = 0.0;  ///< kg m^2/s, L_zeta
+  double axial_momentum = 0.0;     ///< kg m^2/s, L_3 = C w3
+
+  double u_min = 1.0;  ///< cos of the largest tilt: the lower motion root of f (in [-1, 1])
+  double u_max = 1.0;  ///< cos of the smallest tilt: the upper motion root of f (in [-1, 1])
+  /// The third root of f (dimensionless; > 1 for m g R > 0, < -1 for m g R < 0; +-inf or NaN
+  /// when m g R = 0, where f is a quadratic).
+  double u_third = 0.0;
+
+  bool constant_tilt = false;      ///< u_min == u_max: sleeping top, steady precession, rest
+  bool through_vertical = false;   ///< the axis passes through the upward vertical (u_max = 1)
+  bool through_downward = false;   ///< the axis passes through the downward vertical (u_min = -1)
+  /// s, the nutation period (time between two equal maxima of the tilt); +inf when the
+  /// tilt is constant or approaches an unstable state asymptotically (k = 1).
+  double nutation_period = 0.0;
+  /// rad, increase of the azimuth of the axis about the upward vertical over one nutation
+  /// period (0 when the period is infinite). For the exact motion k(t + T) = R_zeta(this) k(t).
+  double precession_per_period = 0.0;
+  /// rad, increase of the spin angle psi (z-x-z Euler angles) over one nutation period.
+  double spin_per_period = 0.0;
+
+  /// The evaluator's precomputed constants (not part of the interface).
+  struct Detail {
+    // The tilt: u = u_a + d sn^2(tau, k), tau = lambda t + tau0; 1 -+ u_{a,b} kept without
+    // cancellation (they vanish for a vertical passage).
+    double u0 = 1.0, u_a = 1.0, d = 0.0, lambda = 0.0, tau0 = 0.0;
+    double one_minus_a = 0.0, one_minus_b = 0.0, one_plus_a = 2.0, one_plus_b = 2.0;
+    double k = 0.0, kc2 = 1.0;  // modulus k and k'^2 = 1 - k^2, kept separately
+    double K = 0.0;             // the quarter period in tau (complete integral K(k))
+    bool periodic = false;      // K finite: reduce tau modulo 2K
+    // Jacobi sn, cn, dn: theta series in the nome q when q is small, else Landen descent.
+    int theta_terms = 0;            // 0: use the Landen descent
+    double theta_odd[8] = {};       // q^(n(n+1)), n = 0.. (theta_1, theta_2 without 2 q^(1/4))
+    double theta_even[8] = {};      // 2 q^(n^2), n = 1.. (theta_3, theta_4)
+    double sn_scale = 0.0, cn_scale = 0.0, dn_scale = 0.0, theta_freq = 0.0;
+    int landen_levels = 0;
+    double landen_ratio[16] = {};   // c_n / a_n of the AGM of (1, k'), n = 1..levels
+    double landen_scale = 0.0;      // 2^N a_N
+    // Elliptic integrals of the third kind for the poles of phi' at u = 1 (index 0) and
+    // u = -1 (index 1): J(tau) = int_0^tau dtau / (1 - n sn^2). mode 0: absent (coefficient
+    // 0), 1: direct, 2: n < 0 transformed to (k^2, 1). signed_form: the factor sqrt(1 -+ u)
+    // vanishes at a root (a vertical passage) and is carried with its sign: 0 no, 1 ~ sn, 2 ~ cn.
+    struct Pole {
+      int mode = 0;
+      int signed_form = 0;
+      double coefficient = 0.0;  // rad per unit J: (P or Q) / ((1 -+ u_a) lambda)
+      double residue = 0.0;      // rad/s: P = (a - b)/2 or Q = (a + b)/2
+      double n = 0.0, one_minus_n = 1.0;
+      double N = 0.0, one_minus_N = 1.0, c1 = 0.0, c2 = 0.0, c3 = 0.0, p2 = 0.0;
+      double complete2 = 0.0;    // 2 Pi(n, k): increase of J per period 2K
+    } pole[2];
+    double sqrt_abs_d = 0.0;
+    double spin_rate_linear = 0.0;  // rad/s: w3 - b, the part of psi' without poles
+    double phi_ref_cos = 1.0, phi_ref_sin = 0.0, psi_ref = 0.0;  // the state's rotation
+    double phi_per_period_mod = 0.0, psi_per_period_mod = 0.0;   // the increments mod 2 pi
+    // Constant tilt: phi' and psi' (rad/s), sin(tilt) at t = 0.
+    double phi_rate = 0.0, psi_rate = 0.0, sin_tilt0 = 0.0;
+  } detail;
+};
+
+/// The closed-form motion of `body` (symmetric, see validate_symmetric) from the user's
+/// state, mapped as SPEC section 2 says (initial_rigid_body_state). Throws InvalidInput.
+LagrangeTop lagrange_top(const Body& body, const InitialState& initial);
+
+/// The same from any rigid-body state (attitude body-to-fixed, angular velocity in body axes,
+/// both finite; the attitude a rotation). Throws InvalidInput ("state") otherwise.
+LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state);
+
+/// The tilt bounds of the motion: the two roots of the cubic f between which u moves.
+struct NutationBounds {
+  double min_tilt = 0.0;  ///< rad, smallest angle of the axis from the upward vertical
+  double max_tilt = 0.0;  ///< rad, largest
+  double u_max = 1.0;     ///< cos(min_tilt), a root of f
+  double u_min = 1.0;     ///< cos(max_tilt), a root of f
+};
+NutationBounds nutation_bounds(const LagrangeTop& top);
+
+/// s, the nutation period (+inf if the tilt is constant or the motion is asymptotic).
+double nutation_period(const LagrangeTop& top);
+
+/// The spin axis k (unit, fixed frame) and its rate k' = w x k (1/s) at time t (s).
+struct AxisMotion {
+  Eigen::Vector3d k;
+  Eigen::Vector3d k_rate;
+};
+AxisMotion lagrange_axis(const LagrangeTop& top, double t);
+
+/// theta, phi and their rates (SPEC section 2) at time t (s): axis_angles(lagrange_axis(t)).
+AxisAngles lagrange_axis_angles(const LagrangeTop& top, double t);
+
+/// The full rigid-body state at time t (s): attitude (body-to-fixed) and angular velocity
+/// (rad/s, body axes), for comparing integrators of the whole body.
+RigidBodyState lagrange_rigid_body_state(const LagrangeTop& top, double t);
+
+/// The `lagrange-exact` model: theta, phi, theta_rate, phi_rate at `times` (s; any finite
+/// values, any order; InvalidInput key "times" otherwise), from `initial` mapped as SPEC
+/// section 2 says. Throws InvalidInput for a bad or non-symmetric body (key "body.B") or state.
+Trajectory simulate_lagrange_exact(const Body& body, const InitialState& initial,
+                                   const std::vector<double>& times);
+
+}  // namespace heavytop

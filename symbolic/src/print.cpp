@@ -33,17 +33,32 @@ int variable_rank(const std::string& name) {
   return it == rank.end() ? -1 : it->second;
 }
 
-// Sort key of a factor of a product: sums first (as in "(C - B) omega0"), then symbols and
-// their powers in rank order, then anything else.
-std::tuple<int, int, std::string> factor_key(const ex& f) {
+void collect_symbols(const ex& e, std::vector<std::string>& names) {
+  if (is_a<GiNaC::symbol>(e)) {
+    names.push_back(ex_to<GiNaC::symbol>(e).get_name());
+    return;
+  }
+  for (size_t i = 0; i < e.nops(); ++i) collect_symbols(e.op(i), names);
+}
+
+// Sort key of a factor of a product: sums first (as in "(C - A) (C - B) omega0"), ordered by
+// the parameters they hold, then symbols and their powers in rank order, then anything else.
+std::tuple<int, int, std::vector<int>> factor_key(const ex& f) {
   ex base = is_a<GiNaC::power>(f) ? f.op(0) : f;
-  if (is_a<GiNaC::add>(base)) return {0, 0, ""};
+  if (is_a<GiNaC::add>(base)) {
+    std::vector<std::string> names;
+    collect_symbols(base, names);
+    std::vector<int> ranks;
+    for (const auto& n : names) ranks.push_back(parameter_rank(n));
+    std::sort(ranks.begin(), ranks.end());
+    return {0, 0, ranks};
+  }
   if (is_a<GiNaC::symbol>(base)) {
     const std::string n = ex_to<GiNaC::symbol>(base).get_name();
     const int v = variable_rank(n);
-    return {1, v >= 0 ? 100 + v : parameter_rank(n), n};
+    return {1, v >= 0 ? 100 + v : parameter_rank(n), {}};
   }
-  return {2, 0, ""};
+  return {2, 0, {}};
 }
 
 // e = coefficient * rest, with the numeric coefficient of a product split off.
@@ -63,13 +78,6 @@ std::pair<numeric, ex> split_coefficient(const ex& e) {
   return {1, e};
 }
 
-void collect_symbols(const ex& e, std::vector<std::string>& names) {
-  if (is_a<GiNaC::symbol>(e)) {
-    names.push_back(ex_to<GiNaC::symbol>(e).get_name());
-    return;
-  }
-  for (size_t i = 0; i < e.nops(); ++i) collect_symbols(e.op(i), names);
-}
 
 bool printed_negative(const ex& term);
 

@@ -53,7 +53,8 @@ def matrix(rows):
     return sp.Matrix([[read(x) for x in row] for row in rows])
 
 def same(a, b):
-    return sp.simplify(sp.expand(a - b)) == 0
+    d = sp.simplify(sp.expand(a - b))
+    return d.is_zero_matrix if isinstance(d, sp.MatrixBase) else d == 0
 
 k = m * g * R
 for name, G in (("model4.json", sp.Matrix([[0, C * w0], [-C * w0, 0]])),

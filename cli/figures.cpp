@@ -1,0 +1,285 @@
+#include "figures.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fmt/format.h>
+
+#include "common.hpp"
+#include "heavytop/stability.hpp"
+
+extern char** environ;
+
+namespace heavytop::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Style {
+  const char* color;
+  const char* dash;
+  double width;
+};
+
+const std::map<std::string, Style> kStyles = {
+    {"nonlinear", {"#000000", "solid", 2.5}},   {"first-order", {"#1f77b4", "solid", 1.5}},
+    {"body-fixed", {"#ff7f0e", "'-'", 1.5}},    {"linearized", {"#2ca02c", "'.'", 2.0}},
+    {"lagrange-exact", {"#9467bd", "'_'", 1.5}}};
+
+std::string line_style(const std::string& model) {
+  const Style& s = kStyles.at(model);
+  return fmt::format("lc rgb '{}' dt {} lw {}", s.color, s.dash, s.width);
+}
+
+/// A scratch folder for data and scripts, removed when done.
+class Scratch {
+ public:
+  Scratch() {
+    std::string pattern = (fs::temp_directory_path() / "heavytop-plot-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw Failure("cannot create a temporary folder for figures");
+    path_ = pattern;
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  std::string file(const std::string& name) const { return (fs::path(path_) / name).string(); }
+
+ private:
+  std::string path_;
+};
+
+void run_gnuplot(const std::string& script, const std::string& log) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::string program = "gnuplot";
+  char* argv[] = {program.data(), const_cast<char*>(script.c_str()), nullptr};
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw Failure("gnuplot not found: install Debian's gnuplot-nox (scripts/install-deps.sh)");
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::ifstream in(log);
+    std::string first;
+    std::getline(in, first);
+    throw Failure(fmt::format("gnuplot failed: {}", first));
+  }
+}
+
+/// Renders `body` (gnuplot commands) to DIR/NAME.png and DIR/NAME.svg, each through a
+/// temporary name and a rename.
+Figure render(const std::string& dir, const std::string& name, const std::string& caption,
+              const std::string& body, const Scratch& scratch, int width = 1400, int height = 900) {
+  const std::string body_file = scratch.file(name + ".body.gp");
+  std::ofstream(body_file) << body;
+  const std::string png = (fs::path(dir) / (name + ".png")).string();
+  const std::string svg = (fs::path(dir) / (name + ".svg")).string();
+  const std::string png_tmp = png + ".tmp", svg_tmp = svg + ".tmp";
+  const std::string script = scratch.file(name + ".gp");
+  std::ofstream(script) << fmt::format(
+      "set terminal pngcairo size {w},{h} enhanced font 'DejaVu Sans,18' linewidth 1.5\n"
+      "set output '{png}'\nload '{body}'\nunset output\n"
+      "set terminal svg size {w},{h} enhanced font 'DejaVu Sans,18' linewidth 1.5 background rgb 'white'\n"
+      "set output '{svg}'\nload '{body}'\nunset output\n",
+      fmt::arg("w", width), fmt::arg("h", height), fmt::arg("png", png_tmp), fmt::arg("svg", svg_tmp),
+      fmt::arg("body", body_file));
+  try {
+    run_gnuplot(script, scratch.file(name + ".log"));
+    fs::rename(png_tmp, png);
+    fs::rename(svg_tmp, svg);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(png_tmp, ignored);
+    fs::remove(svg_tmp, ignored);
+    throw;
+  }
+  return {name, caption};
+}
+
+/// Writes the models' trajectories as t theta phi error, one file each; returns their paths.
+std::vector<std::pair<std::string, std::string>> write_trajectories(const Comparison& c, const Scratch& scratch) {
+  std::vector<std::pair<std::string, std::string>> files;
+  auto write = [&](const std::string& model, const Trajectory& tr) {
+    const std::string path = scratch.file(model + ".dat");
+    std::ofstream out(path);
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+      const double err = std::max(std::abs(tr.theta[i] - c.nonlinear.theta[i]), std::abs(tr.phi[i] - c.nonlinear.phi[i]));
+      out << fmt::format("{} {} {} {}\n", tr.t[i], tr.theta[i], tr.phi[i], err);
+    }
+    files.emplace_back(model, path);
+  };
+  write("nonlinear", c.nonlinear);
+  for (const auto& m : c.models) write(m.model, m.trajectory);
+  return files;
+}
+
+/// rad, a range that shows the true motion with a margin (diverging models leave the plot).
+double angle_range(const Comparison& c) {
+  double r = 0.0;
+  for (std::size_t i = 0; i < c.nonlinear.size(); ++i)
+    r = std::max({r, std::abs(c.nonlinear.theta[i]), std::abs(c.nonlinear.phi[i])});
+  return r > 0.0 ? 1.4 * r : 1e-3;
+}
+
+std::string plot_list(const std::vector<std::pair<std::string, std::string>>& files, const char* columns,
+                      bool skip_truth = false) {
+  std::string list;
+  for (const auto& [model, path] : files) {
+    if (skip_truth && model == "nonlinear") continue;
+    list += fmt::format("{}'{}' using {} with lines {} title '{}'", list.empty() ? "" : ", \\\n  ", path,
+                        columns, line_style(model), model);
+  }
+  return list + "\n";
+}
+
+}  // namespace
+
+Figure plot_angles(const std::string& dir, const Comparison& c) {
+  Scratch scratch;
+  const auto files = write_trajectories(c, scratch);
+  const double r = angle_range(c);
+  std::string body = fmt::format(
+      "set multiplot layout 2,1 title 'Angles of the axis: every model from the same start'\n"
+      "set grid\nset key outside right top\nset rmargin at screen 0.8\nset yrange [{0}:{1}]\nset format y '%.1e'\n"
+      "set ylabel 'theta (rad)'\nunset xlabel\n",
+      -r, r);
+  body += "plot " + plot_list(files, "1:2");
+  body += "set ylabel 'phi (rad)'\nset xlabel 't (s)'\nunset key\n";
+  body += "plot " + plot_list(files, "1:3");
+  body += "unset multiplot\n";
+  return render(dir, "angles", "theta(t) and phi(t) of every model; the nonlinear body (black) is the truth, and models that diverge leave the chart.", body, scratch, 1400, 1000);
+}
+
+Figure plot_axis_path(const std::string& dir, const Comparison& c) {
+  Scratch scratch;
+  const auto files = write_trajectories(c, scratch);
+  const double r = angle_range(c);
+  std::string body = fmt::format(
+      "set title 'Path of the axis tip: nutation loops and cusps'\nset grid\nset size ratio -1\n"
+      "set key outside right top\nset xrange [{0}:{1}]\nset yrange [{0}:{1}]\nset format x '%.2g'\nset format y '%.2g'\n"
+      "set xtics rotate by -35\n"
+      "set xlabel 'theta (rad)'\nset ylabel 'phi (rad)'\nplot ",
+      -r, r);
+  body += plot_list(files, "2:3");
+  return render(dir, "axis-path", "The tip of the axis seen from above (theta against phi), every model.", body, scratch, 1300, 1000);
+}
+
+Figure plot_errors(const std::string& dir, const Comparison& c) {
+  Scratch scratch;
+  const auto files = write_trajectories(c, scratch);
+  std::string body =
+      "set title 'Error of each model against the nonlinear body'\nset grid\nset logscale y\n"
+      "set format y '10^{%L}'\nset key outside right top\nset xlabel 't (s)'\n"
+      "set ylabel 'max(|d theta|, |d phi|) (rad)'\nplot ";
+  body += plot_list(files, "1:($4 > 1e-17 ? $4 : 1/0)", true);
+  return render(dir, "errors", "The angle error of each model against time, on a log scale.", body, scratch);
+}
+
+Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state) {
+  Scratch scratch;
+  // B/A over every value a real body allows with A and C held, |C - A| <= B <= C + A.
+  const double lo = std::abs(body.C - body.A) / body.A, hi = (body.C + body.A) / body.A;
+  const int n = 300;
+  double top = std::abs(state.spin);
+  std::map<std::string, std::ofstream> ends;
+  for (LinearModelKind kind : kLinearModels) ends[std::string(name(kind))].open(scratch.file(std::string(name(kind)) + ".ends"));
+  for (int i = 0; i < n; ++i) {
+    const double ratio = lo + (hi - lo) * i / (n - 1);
+    Body b = body;
+    b.B = ratio * body.A;
+    for (LinearModelKind kind : kLinearModels) {
+      for (const SpinInterval& iv : stable_spin_intervals(linear_model(kind, b))) {
+        if (iv.lo > 0.0) ends[std::string(name(kind))] << fmt::format("{} {}\n", ratio, iv.lo);
+        if (iv.hi) ends[std::string(name(kind))] << fmt::format("{} {}\n", ratio, *iv.hi);
+        if (kind != LinearModelKind::BodyFixed) top = std::max(top, iv.hi ? *iv.hi : iv.lo);
+      }
+    }
+  }
+  for (auto& [model, file] : ends) file.close();
+  top = top > 0.0 ? 1.6 * top : 1.0;
+
+  // The practical verdict of the nonlinear body on a coarse grid.
+  std::vector<SweepAxis> axes{{"B/A", lo + 0.02 * (hi - lo), hi - 0.02 * (hi - lo), 16}, {"spin", top / 15.0, top, 15}};
+  InitialState start = state;
+  start.theta0 = 1e-3;
+  start.phi0 = start.theta_rate0 = start.phi_rate0 = 0.0;
+  SweepOptions options;
+  options.nonlinear = true;
+  options.max_tilt = 0.5;
+  const double scale = std::abs(body.mgR()) > 0.0 ? std::sqrt(std::min(body.A, body.B) / std::abs(body.mgR())) : 1.0;
+  options.horizon = 300.0 * scale;
+  options.integrator.rtol = options.integrator.atol = 1e-8;
+  std::ofstream up(scratch.file("up.dat")), falls(scratch.file("falls.dat"));
+  const auto verdicts = sweep_verdicts(body, start, axes, options, 0, grid_size(axes));
+  for (std::size_t i = 0; i < verdicts.size(); ++i)
+    (*verdicts[i].nonlinear ? up : falls) << fmt::format("{} {}\n", axes[0].value(i / 15), axes[1].value(i % 15));
+  up.close();
+  falls.close();
+
+  std::string plot = fmt::format(
+      "set title 'Where the top stands up (A = {:g}, C = {:g} kg m^2 held)'\n"
+      "set grid\nset key outside below center maxrows 2 width -2\nset xlabel 'B/A'\nset ylabel 'spin w0 (rad/s)'\n"
+      "set xrange [{}:{}]\nset yrange [0:{}]\n"
+      "plot '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#1f77b4' title 'ends of stable spins: first-order (4)', \\\n"
+      "  '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#ff7f0e' title 'body-fixed (5)', \\\n"
+      "  '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#2ca02c' title 'linearized (exact)', \\\n"
+      "  '{}' using 1:2 with points pt 6 ps 1.4 lw 2 lc rgb '#2ca02c' title 'nonlinear: stays up', \\\n"
+      "  '{}' using 1:2 with points pt 2 ps 1.4 lw 2 lc rgb '#d62728' title 'nonlinear: falls', \\\n"
+      "  '-' using 1:2 with points pt 3 ps 3 lw 3 lc rgb 'black' title 'this body'\n{} {}\ne\n",
+      body.A, body.C, lo, hi, top, scratch.file("first-order.ends"), scratch.file("body-fixed.ends"),
+      scratch.file("linearized.ends"), scratch.file("up.dat"), scratch.file("falls.dat"), body.B / body.A,
+      std::abs(state.spin));
+  return render(dir, "stability-diagram",
+                "Ends of the stable spin intervals of each linear model as B/A varies, and the nonlinear body's "
+                "verdict (started 1e-3 rad off vertical) on a grid: where (4) and the exact linearisation part, "
+                "the paper's (9) is wrong (erratum E3).",
+                plot, scratch, 1500, 950);
+}
+
+Figure plot_sweep_map(const std::string& dir, const Body& body, const InitialState& state,
+                      const std::vector<SweepAxis>& axes, const std::vector<SweepVerdict>& verdicts) {
+  (void)body;
+  (void)state;
+  Scratch scratch;
+  const std::string data = scratch.file("map.dat");
+  {
+    std::ofstream out(data);
+    for (std::size_t i = 0; i < verdicts.size(); ++i) {
+      // 0 neither, 1 only (4) (a false promise), 2 only the linearisation ((9) too strict), 3 both.
+      const int category = int(verdicts[i].linear[0]) + 2 * int(verdicts[i].linear[2]);
+      out << fmt::format("{} {} {}\n", axes[0].value(i / axes[1].count), axes[1].value(i % axes[1].count), category);
+      if ((i + 1) % axes[1].count == 0) out << "\n";
+    }
+  }
+  auto label = [](const std::string& key) {
+    return key == "spin" ? std::string("spin w0 (rad/s)") : key == "B/A" || key == "C/A" ? key
+         : key == "length" ? std::string("length R (m)") : key == "mass" ? std::string("mass (kg)")
+         : key == "gravity" ? std::string("gravity (m/s^2)") : key + " (kg m^2)";
+  };
+  const std::string plot = fmt::format(
+      "set title 'Stability map: the paper (4) against the exact linearisation'\n"
+      "set xlabel '{}'\nset ylabel '{}'\nset tics out\nset autoscale fix\n"
+      "set palette maxcolors 4\nset palette defined (0 '#d9d9d9', 1 '#d62728', 2 '#1f77b4', 3 '#2ca02c')\n"
+      "set cbrange [-0.5:3.5]\n"
+      "set cbtics ('both unstable' 0, 'only (4) stable:' 1.15, 'a false promise' 0.85, 'only the exact stable:' 2.15, "
+      "'(9) too strict' 1.85, 'both stable' 3) scale 0\n"
+      "set colorbox user origin 0.72,0.15 size 0.03,0.7\nset rmargin at screen 0.70\n"
+      "plot '{}' using 1:2:3 with image notitle\n",
+      label(axes[0].key), label(axes[1].key), data);
+  return render(dir, "stability-map",
+                "Each grid point coloured by the verdicts of (4) and of the exact linearisation: red where the "
+                "paper promises a stability that is not there, blue where it is too strict.",
+                plot, scratch, 1500, 950);
+}
+
+}  // namespace heavytop::cli
