@@ -8,7 +8,7 @@ namespace {
 
 using namespace heavytop;
 
-const InitialState kState{.spin = 200.0, .theta0 = 0.05};
+const InitialState kState = example_motion();
 
 // One sample of the closed form (the built-in toy top, first-order model), as a user's
 // time loop calls it: items_per_second is samples per second on one core.

@@ -62,7 +62,9 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(fo
       ->type_name("FILE");
   for (const KeySpec& spec : kKeys) {
     Override& o = overrides_[spec.key];
-    o.option = command.add_option(spec.option, o.value, spec.help)->type_name("NUM");
+    o.option = command.add_option(spec.option, o.value, spec.help)
+                   ->type_name("NUM")
+                   ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     o.option->group(std::string(spec.key).starts_with("body.") ? "Body" : "Motion");
   }
   command.add_option("--format", format_, "output format")
@@ -77,7 +79,7 @@ void Inputs::allow_section(const std::string& section, std::vector<std::string> 
 
 void Inputs::resolve() {
   Body body = example_toy_top();
-  InitialState state{.spin = 200.0, .theta0 = 0.05};
+  InitialState state = example_motion();
   if (!config_path_.empty()) {
     toml::table table;
     try {

@@ -33,15 +33,13 @@ int main(int argc, char** argv) {
         action();
         return 0;
       }
-    // No command: the built-in example, a toy top, analysed as `heavytop stability` would.
-    std::cout << "heavytop: the built-in example, a wooden toy top (60 g, 40 mm disc, centre of "
-                 "mass 25 mm above the tip), spun at 200 rad/s.\n\n";
-    char arg0[] = "heavytop", arg1[] = "stability";
-    char* example_args[] = {arg0, arg1};
-    app.parse(2, example_args);
-    for (auto& [command, action] : actions)
-      if (command->parsed()) action();
-    std::cout << "\nMore: heavytop --help; heavytop simulate --model nonlinear --t-end 2 (CSV on stdout).\n";
+    // No command: the report for the built-in example, a toy top.
+    const std::string dir = "heavytop-report";
+    std::cout << "heavytop: the built-in example, a wooden toy top (60 g, 40 mm disc, centre of mass 25 mm "
+                 "above the tip) spun at 200 rad/s, started 0.05 rad off vertical.\n";
+    cli::write_report(dir, example_toy_top(), example_motion(), std::nullopt);
+    std::cout << "heavytop: wrote " << dir << "/report.html (open it in a browser); "
+              << "`heavytop --help` lists the commands.\n";
     return 0;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

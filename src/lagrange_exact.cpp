@@ -1,6 +1,7 @@
 #include "heavytop/lagrange_exact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -34,6 +35,7 @@ using Complex = std::complex<double>;
 
 struct Jacobi {
   double sn, cn, dn;
+  double cos2v = 1.0, sin2v = 0.0;  // cos, sin of pi r / K (theta path only)
 };
 
 // Theta series (DLMF 22.2.4) with the common factor 2 q^(1/4) of theta_1, theta_2 divided
@@ -54,7 +56,8 @@ Jacobi jacobi_theta(const Detail& d, double r) {
     even *= w;
   }
   const double inv4 = 1.0 / t4;
-  return {d.sn_scale * t1 * inv4, d.cn_scale * t2 * inv4, d.dn_scale * t3 * inv4};
+  return {d.sn_scale * t1 * inv4, d.cn_scale * t2 * inv4, d.dn_scale * t3 * inv4, w.real(),
+          w.imag()};
 }
 
 // Descending Landen transformation (A&S 16.4) on the AGM of (1, k') precomputed from k'^2,
@@ -62,13 +65,13 @@ Jacobi jacobi_theta(const Detail& d, double r) {
 Jacobi jacobi_landen(const Detail& d, double r) {
   if (d.kc2 == 0.0) {  // k = 1: the separatrix
     const double sech = 1.0 / std::cosh(r);
-    return {std::tanh(r), sech, sech};
+    return {std::tanh(r), sech, sech, 1.0, 0.0};
   }
   double phi = d.landen_scale * r;
   for (int n = d.landen_levels; n >= 1; --n)
     phi = 0.5 * (phi + std::asin(d.landen_ratio[n - 1] * std::sin(phi)));
   const double sn = std::sin(phi), cn = std::cos(phi);
-  return {sn, cn, std::sqrt(cn * cn + d.kc2 * sn * sn)};
+  return {sn, cn, std::sqrt(cn * cn + d.kc2 * sn * sn), 1.0, 0.0};
 }
 
 Jacobi jacobi(const Detail& d, double r) {
@@ -103,11 +106,9 @@ void prepare_jacobi(Detail& d) {
   }
   const double q = b2 > 0.0 ? std::exp(-kPi * (kPi / (2.0 * a2)) / d.K) : 0.0;
   if (q > 0.3) return;  // Landen descent instead
-  // Terms n = 0..M with q^((M+1)(M+2)) and 2 q^((M+1)^2) below 2^-60.
+  // Terms n = 0..M; the first left out, q^((M+1)(M+2)), is below 2^-60.
   int m = 0;
-  while (m < 7 && q > 0.0 &&
-         (std::pow(q, (m + 1) * (m + 2)) > 0x1p-60 || 2.0 * std::pow(q, (m + 1) * (m + 1)) > 0x1p-60))
-    ++m;
+  while (m < 7 && q > 0.0 && std::pow(q, (m + 1) * (m + 2)) > 0x1p-60) ++m;
   d.theta_terms = m + 1;
   double t2_0 = 0.0, t3_0 = 1.0, t4_0 = 1.0;
   for (int n = 0; n <= m; ++n) {
@@ -140,6 +141,18 @@ double third_kind(const Pole& p, double r, const Jacobi& j) {
   if (p.c1 != 0.0)
     pi_n = j.sn == 0.0 ? r : r + p.N * j.sn * s2 * rj(c2, dn2, 1.0, c2 + p.one_minus_N * s2) / 3.0;
   return p.c1 * pi_n + p.c2 * r + p.c3 * std::atan(p.p2 * j.sn * j.cn / j.dn);
+}
+
+// Sum_{j=1..n} b_j sin(j x) by Clenshaw's recurrence, from cos x and sin x.
+double sine_series(const double* b, int n, double cos_x, double sin_x) {
+  double b1 = 0.0, b2 = 0.0;
+  const double two_c = 2.0 * cos_x;
+  for (int j = n - 1; j >= 0; --j) {
+    const double b0 = std::fma(two_c, b1, b[j] - b2);
+    b2 = b1;
+    b1 = b0;
+  }
+  return b1 * sin_x;
 }
 
 // 2 Pi(n, k), the increase of J over a period 2K.
@@ -232,6 +245,71 @@ double turning_root(const Poly& g, double e, bool end_is_root, double slope_end)
   return bracketed_root(r, 0.0, e, false);
 }
 
+// The pole integrands 1/(1 - n sn^2) sampled over a period and turned into sine series of
+// their integrals: J_per(r) = sum_j B_j sin(j pi r / K). Kept only if the series reaches
+// rounding level within kMaxSeries terms and matches the elliptic integrals off the grid.
+void prepare_series(Detail& d) {
+  d.series_terms = 0;
+  if (!d.periodic || d.theta_terms == 0 || (!d.pole[0].mode && !d.pole[1].mode)) return;
+  constexpr int kM = 4 * Detail::kMaxSeries;  // samples per period: aliasing from j >= 3 kMax
+  constexpr int kJ = Detail::kMaxSeries;
+  auto integrand = [&](const Pole& p, const Jacobi& j) {
+    if (!p.mode) return 0.0;
+    const double s2 = j.sn * j.sn;
+    return 1.0 / (p.mode == 1 ? j.cn * j.cn + p.one_minus_n * s2 : 1.0 - p.n * s2);
+  };
+  static const auto cos_table = [] {
+    std::array<double, kM> c{};
+    for (int i = 0; i < kM; ++i) c[i] = std::cos(kTwoPi * i / kM);
+    return c;
+  }();
+  std::array<double, kM> f_phi{}, f_psi{};
+  for (int i = 0; i < kM; ++i) {
+    const Jacobi j = jacobi(d, d.K * (-1.0 + 2.0 * i / kM));
+    const double g0 = d.pole[0].coefficient * integrand(d.pole[0], j);
+    const double g1 = d.pole[1].coefficient * integrand(d.pole[1], j);
+    f_phi[i] = g0 + g1;
+    f_psi[i] = g1 - g0;
+  }
+  // cos(j pi r_i / K) = (-1)^j cos(2 pi j i / M) on the grid r_i = K (-1 + 2 i / M).
+  double scale = 0.0;
+  for (int j = 1; j <= kJ; ++j) {
+    double a_phi = 0.0, a_psi = 0.0;
+    for (int i = 0; i < kM; ++i) {
+      const double c = cos_table[(static_cast<long>(j) * i) % kM];
+      a_phi += f_phi[i] * c;
+      a_psi += f_psi[i] * c;
+    }
+    const double sign = (j % 2 == 0) ? 1.0 : -1.0;
+    const double to_sine = sign * (2.0 / kM) * d.K / (j * kPi);
+    d.phi_series[j - 1] = a_phi * to_sine;
+    d.psi_series[j - 1] = a_psi * to_sine;
+    scale = std::max({scale, std::abs(d.phi_series[j - 1]), std::abs(d.psi_series[j - 1])});
+  }
+  // Terms up to the last one above 1e-17 rad (and above rounding of the largest).
+  const double floor = std::max(1e-17, 1e-16 * scale);
+  int terms = kJ;
+  while (terms > 0 && std::abs(d.phi_series[terms - 1]) <= floor &&
+         std::abs(d.psi_series[terms - 1]) <= floor)
+    --terms;
+  if (terms >= kJ - 4) return;  // not converged: the elliptic integrals stay
+  d.phi_slope = (d.pole[0].coefficient * d.pole[0].complete2 +
+                 d.pole[1].coefficient * d.pole[1].complete2) / (2.0 * d.K);
+  d.psi_slope = (d.pole[1].coefficient * d.pole[1].complete2 -
+                 d.pole[0].coefficient * d.pole[0].complete2) / (2.0 * d.K);
+  // Check against the integrals off the grid.
+  for (int i = 0; i < 11; ++i) {
+    const double r = d.K * (-1.0 + (2.0 * i + 0.731) / 11.0);
+    const Jacobi j = jacobi(d, r);
+    const double a0 = d.pole[0].mode ? d.pole[0].coefficient * third_kind(d.pole[0], r, j) : 0.0;
+    const double a1 = d.pole[1].mode ? d.pole[1].coefficient * third_kind(d.pole[1], r, j) : 0.0;
+    const double phi = d.phi_slope * r + sine_series(d.phi_series, terms, j.cos2v, j.sin2v);
+    const double psi = d.psi_slope * r + sine_series(d.psi_series, terms, j.cos2v, j.sin2v);
+    if (!(std::abs(phi - (a0 + a1)) <= 1e-14 && std::abs(psi - (a1 - a0)) <= 1e-14)) return;
+  }
+  d.series_terms = terms;
+}
+
 double tilt_from(double one_minus, double one_plus) {
   return one_minus <= 1.0 ? 2.0 * std::asin(std::sqrt(0.5 * one_minus))
                           : kPi - 2.0 * std::asin(std::sqrt(0.5 * one_plus));
@@ -248,6 +326,7 @@ struct Canonical {
   double phi, psi;         // rad, the Euler angles phi and psi, reduced to about [-3 pi, 3 pi]
 };
 
+template <bool WantPsi = true>
 Canonical canonical(const Detail& d, double t) {
   Canonical c;
   if (!(d.lambda > 0.0)) {  // constant tilt
@@ -300,12 +379,24 @@ Canonical canonical(const Detail& d, double t) {
   if (d.pole[0].signed_form == 0) c.phi_rate_sigma += d.pole[0].residue * sp / sm;
   if (d.pole[1].signed_form == 0) c.phi_rate_sigma += d.pole[1].residue * sm / sp;
 
-  const double j0 = d.pole[0].mode ? third_kind(d.pole[0], r, j) : 0.0;
-  const double j1 = d.pole[1].mode ? third_kind(d.pole[1], r, j) : 0.0;
-  const double a0 = d.pole[0].coefficient * j0, a1 = d.pole[1].coefficient * j1;
-  c.phi = std::remainder(periods * d.phi_per_period_mod, kTwoPi) + a0 + a1;
-  c.psi = std::remainder(periods * d.psi_per_period_mod, kTwoPi) +
-          d.spin_rate_linear * (r / d.lambda) - a0 + a1;
+  // The pole terms of phi (a0 + a1) and psi (a1 - a0) over the reduced tau.
+  double phi_poles, psi_poles = 0.0;
+  if (d.series_terms > 0) {
+    phi_poles = d.phi_slope * r + sine_series(d.phi_series, d.series_terms, j.cos2v, j.sin2v);
+    if constexpr (WantPsi)
+      psi_poles = d.psi_slope * r + sine_series(d.psi_series, d.series_terms, j.cos2v, j.sin2v);
+  } else {
+    const double j0 = d.pole[0].mode ? third_kind(d.pole[0], r, j) : 0.0;
+    const double j1 = d.pole[1].mode ? third_kind(d.pole[1], r, j) : 0.0;
+    const double a0 = d.pole[0].coefficient * j0, a1 = d.pole[1].coefficient * j1;
+    phi_poles = a0 + a1;
+    psi_poles = a1 - a0;
+  }
+  c.phi = std::remainder(periods * d.phi_per_period_mod, kTwoPi) + phi_poles;
+  c.psi = 0.0;
+  if constexpr (WantPsi)
+    c.psi = std::remainder(periods * d.psi_per_period_mod, kTwoPi) +
+            d.spin_rate_linear * (r / d.lambda) + psi_poles;
   return c;
 }
 
@@ -316,9 +407,10 @@ struct AxisFull {
   Canonical c;
 };
 
+template <bool WantPsi = true>
 AxisFull axis_full(const Detail& d, double t) {
   AxisFull a;
-  a.c = canonical(d, t);
+  a.c = canonical<WantPsi>(d, t);
   a.e_phi = Complex(d.phi_ref_cos, d.phi_ref_sin) * Complex(std::cos(a.c.phi), std::sin(a.c.phi));
   // h = k_xi + i k_eta = -i sigma e^{i phi};  h' = -i e^{i phi} (sigma' + i phi' sigma).
   const Complex minus_i_e = Complex(0.0, -1.0) * a.e_phi;
@@ -362,13 +454,15 @@ void validate_symmetric(const Body& body) {
                        "lagrange-exact needs a symmetric body: B must equal A (to 1e-12 relative)");
 }
 
-LagrangeTop lagrange_top(const Body& body, const InitialState& initial) {
+LagrangeTop lagrange_top(const Body& body, const InitialState& initial,
+                         const LagrangeExactOptions& options) {
   validate_symmetric(body);
   validate(initial);
-  return lagrange_top(body, initial_rigid_body_state(initial));
+  return lagrange_top(body, initial_rigid_body_state(initial), options);
 }
 
-LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state) {
+LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
+                         const LagrangeExactOptions& options) {
   validate_symmetric(body);
   require_finite_state(state);
 
@@ -432,9 +526,6 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state) {
   top.through_downward = one_plus_lo == 0.0 && x_hi != x_lo;
   d.u0 = u0;
   d.sin_tilt0 = std::sqrt(s02);
-  // Bounds for nutation_bounds(): stored as the a/b pair below, and here for the tilt.
-  d.one_minus_a = one_minus_lo;  // overwritten below; kept consistent for constant tilt
-  d.one_plus_a = one_plus_lo;
 
   // Root a: where tau = 0. beta >= 0: the lower root (u_far above), beta < 0: the upper.
   const bool a_is_lo = beta >= 0.0;
@@ -497,6 +588,8 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state) {
         top.precession_per_period += kPi;
         top.spin_per_period += kPi;
       }
+      if (options.fourier_series) prepare_series(d);
+      top.fourier_series = d.series_terms > 0;
     } else {
       top.nutation_period = kInf;
     }
@@ -548,12 +641,12 @@ NutationBounds nutation_bounds(const LagrangeTop& top) {
 double nutation_period(const LagrangeTop& top) { return top.nutation_period; }
 
 AxisMotion lagrange_axis(const LagrangeTop& top, double t) {
-  const AxisFull a = axis_full(top.detail, t);
+  const AxisFull a = axis_full<false>(top.detail, t);
   return {a.k, a.k_rate};
 }
 
 AxisAngles lagrange_axis_angles(const LagrangeTop& top, double t) {
-  const AxisFull a = axis_full(top.detail, t);
+  const AxisFull a = axis_full<false>(top.detail, t);
   return axis_angles(a.k, a.k_rate);
 }
 

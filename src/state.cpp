@@ -6,6 +6,8 @@
 
 namespace heavytop {
 
+InitialState example_motion() { return InitialState{.spin = 200.0, .theta0 = 0.05}; }
+
 void validate(const InitialState& s) {
   const std::pair<double, const char*> fields[] = {{s.spin, "motion.spin"},
                                                    {s.theta0, "motion.theta0"},

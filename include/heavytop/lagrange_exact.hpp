@@ -54,6 +54,9 @@ struct LagrangeTop {
   double u_third = 0.0;
 
   bool constant_tilt = false;      ///< u_min == u_max: sleeping top, steady precession, rest
+  /// The azimuth and spin angle are summed as Fourier series (checked against the elliptic
+  /// integrals at setup to 1e-14 rad) rather than evaluated as elliptic integrals per sample.
+  bool fourier_series = false;
   bool through_vertical = false;   ///< the axis passes through the upward vertical (u_max = 1)
   bool through_downward = false;   ///< the axis passes through the downward vertical (u_min = -1)
   /// s, the nutation period (time between two equal maxima of the tilt); +inf when the
@@ -101,16 +104,32 @@ struct LagrangeTop {
     double phi_per_period_mod = 0.0, psi_per_period_mod = 0.0;   // the increments mod 2 pi
     // Constant tilt: phi' and psi' (rad/s), sin(tilt) at t = 0.
     double phi_rate = 0.0, psi_rate = 0.0, sin_tilt0 = 0.0;
+    // The pole terms of phi and psi as Fourier sine series in pi tau / K (rad), when they
+    // converge within kMaxSeries terms and match the elliptic integrals at setup.
+    static constexpr int kMaxSeries = 64;
+    int series_terms = 0;
+    double phi_slope = 0.0, psi_slope = 0.0;  // rad per unit tau, the secular parts
+    double phi_series[kMaxSeries] = {}, psi_series[kMaxSeries] = {};
   } detail;
+};
+
+/// How lagrange_top() prepares the evaluation.
+struct LagrangeExactOptions {
+  /// Sum the periodic parts of the azimuth and spin angle as Fourier series (precomputed from
+  /// the elliptic integrals, about 4x faster per sample) wherever at most 64 terms reach
+  /// rounding level and agree with the integrals at setup; false: elliptic integrals always.
+  bool fourier_series = true;
 };
 
 /// The closed-form motion of `body` (symmetric, see validate_symmetric) from the user's
 /// state, mapped as SPEC section 2 says (initial_rigid_body_state). Throws InvalidInput.
-LagrangeTop lagrange_top(const Body& body, const InitialState& initial);
+LagrangeTop lagrange_top(const Body& body, const InitialState& initial,
+                         const LagrangeExactOptions& options = {});
 
 /// The same from any rigid-body state (attitude body-to-fixed, angular velocity in body axes,
 /// both finite; the attitude a rotation). Throws InvalidInput ("state") otherwise.
-LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state);
+LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
+                         const LagrangeExactOptions& options = {});
 
 /// The tilt bounds of the motion: the two roots of the cubic f between which u moves.
 struct NutationBounds {

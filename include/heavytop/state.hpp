@@ -18,6 +18,9 @@ struct InitialState {
   double phi_rate0 = 0.0;    ///< rad/s, phi'(0)
 };
 
+/// The built-in example's motion: example_toy_top() spun at 200 rad/s, 0.05 rad off vertical.
+InitialState example_motion();
+
 /// Throws InvalidInput (key "motion.<name>") unless every field is finite.
 void validate(const InitialState& state);
 

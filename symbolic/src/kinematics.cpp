@@ -56,11 +56,9 @@ matrix truncate(const matrix& a, int order) {
   return out;
 }
 
-std::vector<Coordinate> coordinates(bool psi_spins) {
+std::vector<Coordinate> coordinates() {
   const Symbols& s = symbols();
-  return {{s.phi, s.phi_t, s.phi_tt},
-          {s.theta, s.theta_t, s.theta_tt},
-          psi_spins ? Coordinate{s.psi, s.omega0, 0} : Coordinate{s.psi, s.psi_t, s.psi_tt}};
+  return {{s.phi, s.phi_t, s.phi_tt}, {s.theta, s.theta_t, s.theta_tt}, {s.psi, s.psi_t, s.psi_tt}};
 }
 
 ex time_derivative(const ex& e, const std::vector<Coordinate>& coords) {

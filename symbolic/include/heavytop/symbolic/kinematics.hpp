@@ -38,16 +38,15 @@ GiNaC::ex truncate(const GiNaC::ex& e, int order);
 GiNaC::matrix truncate(const GiNaC::matrix& a, int order);
 
 /// How a generalised coordinate moves: its rate and acceleration (symbols, or a constant rate
-/// such as omega0 with acceleration 0 when the "angle" is the spin angle omega0 t).
+/// with acceleration 0).
 struct Coordinate {
-  GiNaC::symbol q;       ///< the coordinate
-  GiNaC::ex rate;        ///< dq/dt
-  GiNaC::ex acceleration;///< d^2q/dt^2
+  GiNaC::symbol q;         ///< the coordinate
+  GiNaC::ex rate;          ///< dq/dt
+  GiNaC::ex acceleration;  ///< d^2q/dt^2
 };
 
-/// The paper's coordinates phi, theta, psi with symbolic rates phi', ... (psi' = omega0 and
-/// psi'' = 0 when `psi_spins`, the frame rigidly attached to the body).
-std::vector<Coordinate> coordinates(bool psi_spins = false);
+/// The paper's coordinates phi, theta, psi with their symbolic rates and accelerations.
+std::vector<Coordinate> coordinates();
 
 /// d e / dt along `coords` (chain rule; the parameters are constant).
 GiNaC::ex time_derivative(const GiNaC::ex& e, const std::vector<Coordinate>& coords);

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# sweep and report as a user runs them: CSV rows, a sweep killed midway and resumed (the rows
+# equal an uninterrupted run's, none twice), and the report's figures valid PNG/SVG with
+# the expected series.
+set -u
+H=$(realpath "${HEAVYTOP:?set HEAVYTOP to the heavytop binary}")
+work=$(mktemp -d)
+trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+passes=0
+check() {
+  local name=$1; shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+body=(--A 1 --B 1 --C 1.5 --mass 1 --gravity 1 --length 1)
+
+# ---- a linear sweep: one row per grid point, in grid order -----------------------------------
+"$H" sweep "${body[@]}" --vary B/A=0.6:2.4:10 --vary spin=0:4:20 --output map.csv
+check "sweep exit 0" test $? -eq 0
+check "sweep rows" python3 - map.csv <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+assert rows[0] == ["B/A", "spin", "first-order", "body-fixed", "linearized"], rows[0]
+assert len(rows) == 1 + 200
+grid = [(float(r[0]), float(r[1])) for r in rows[1:]]
+assert grid == sorted(grid) and len(set(grid)) == 200
+assert all(r[2] in "01" and r[3] in "01" and r[4] in "01" for r in rows[1:])
+PY
+check "no partial left" test ! -e map.csv.partial -a ! -e map.csv.partial.args
+
+# ---- a nonlinear sweep killed midway, then resumed -----------------------------------------
+asym=(--A 1 --B 1.5 --C 2 --mass 1 --gravity 1 --length 1)
+common=("${asym[@]}" --theta0 1e-3 --model nonlinear --horizon 400 --max-tilt 0.5 --rtol 1e-11 --atol 1e-11)
+args=("${common[@]}" --vary spin=1.2:2.2:48)
+"$H" sweep "${args[@]}" --output whole.csv
+check "uninterrupted nonlinear sweep" test $? -eq 0
+"$H" sweep "${args[@]}" --output resumed.csv 2>/dev/null &
+pid=$!
+for _ in $(seq 1 400); do  # until a few rows are out, then kill it without warning
+  rows=$( [ -e resumed.csv.partial ] && wc -l < resumed.csv.partial || echo 0)
+  [ "$rows" -ge 4 ] && break
+  sleep 0.01
+done
+kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+partial_rows=$( [ -e resumed.csv.partial ] && wc -l < resumed.csv.partial || echo 0)
+check "killed midway (partial file has some rows, not all)" test "$partial_rows" -ge 2 -a "$partial_rows" -lt 49
+printf '1.2,0,' >> resumed.csv.partial   # a torn last line, as a kill mid-write leaves
+"$H" sweep "${args[@]}" --output resumed.csv 2> resume.log
+check "resume exit 0" test $? -eq 0
+check "resume said so" grep -q "resuming" resume.log
+check "resumed rows equal an uninterrupted run" cmp -s whole.csv resumed.csv
+check "nonlinear column" python3 -c '
+import csv; rows = list(csv.reader(open("whole.csv")))
+assert rows[0][-1] == "nonlinear" and len(rows) == 49
+v = {float(r[0]): r for r in rows[1:]}
+lo = [r for s, r in v.items() if s < 1.40]; hi = [r for s, r in v.items() if s > 1.45]
+assert all(r[3] == "0" for r in lo) and all(r[3] == "1" for r in hi)   # linearized: sqrt 2
+assert all(r[4] == "0" for r in lo[:3]) and all(r[4] == "1" for r in hi)  # the body falls below it'
+# Other arguments do not resume a partial file: it starts over.
+cp resumed.csv other.csv.partial; echo "made with other arguments" > other.csv.partial.args
+"$H" sweep "${common[@]}" --vary spin=1.2:2.2:5 --output other.csv >/dev/null 2>&1
+check "changed arguments start over" test "$(wc -l < other.csv)" -eq 6
+
+# ---- the report: figures are valid PNG and SVG with the expected series ---------------------
+"$H" report "${asym[@]}" --spin 1.6 --theta0 0.01 --output rep > report.log
+check "report exit 0" test $? -eq 0
+check "report says where" grep -q "rep/report.html" report.log
+check "figures" python3 - rep <<'PY'
+import sys, os, xml.etree.ElementTree as ET
+d = sys.argv[1]
+series = {
+    "angles": ["nonlinear", "first-order", "body-fixed", "linearized"],
+    "axis-path": ["nonlinear", "first-order", "body-fixed", "linearized"],
+    "errors": ["first-order", "body-fixed", "linearized"],
+    "stability-diagram": ["first-order (4)", "body-fixed (5)", "linearized (exact)", "nonlinear: stays up", "nonlinear: falls"],
+    "stability-map": [],
+}
+for name, expected in series.items():
+    png = open(os.path.join(d, name + ".png"), "rb").read()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10000, name
+    root = ET.parse(os.path.join(d, name + ".svg")).getroot()
+    titles = [e.text or "" for e in root.iter() if e.tag.endswith("title")]
+    for s in expected:
+        assert any(s in t for t in titles), (name, s, titles)
+html = open(os.path.join(d, "report.html")).read()
+for f in series:
+    assert f + ".svg" in html and f + ".png" in html
+for f in ("stability.json", "comparison.json", "comparison.csv", "trajectories.csv", "stability-map.csv"):
+    assert os.path.getsize(os.path.join(d, f)) > 0 and f in html
+assert "E3" in html and "http" not in html.replace("http-equiv", "")   # nothing fetched from a network
+PY
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]
