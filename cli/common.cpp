@@ -1,5 +1,6 @@
 #include "common.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -179,6 +180,31 @@ void write_output(const std::string& path, const std::string& content) {
     out.close();
     if (!out) throw Failure(fmt::format("--output: cannot write '{}'", path));
   });
+}
+
+namespace {
+double seconds_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+ProgressBar::ProgressBar(std::string label, double total)
+    : label_(std::move(label)), total_(total), terminal_(isatty(STDERR_FILENO) && total > 0), start_(seconds_now()) {}
+
+void ProgressBar::update(double done) {
+  if (!terminal_) return;
+  const double now = seconds_now();
+  if (now - start_ < 1.0 || now - last_draw_ < 0.1) return;
+  last_draw_ = now;
+  shown_ = true;
+  const double fraction = std::clamp(done / total_, 0.0, 1.0);
+  const int width = 40, filled = static_cast<int>(width * fraction);
+  std::cerr << fmt::format("\r{} [{:<{}}] {:3.0f}%", label_, std::string(filled, '#'), width, 100.0 * fraction)
+            << std::flush;
+}
+
+ProgressBar::~ProgressBar() {
+  if (shown_) std::cerr << "\n";
 }
 
 std::string number(double value) {

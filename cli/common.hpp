@@ -67,6 +67,23 @@ void write_output(const std::string& path, const std::string& content);
 /// temporary path. Used for outputs produced by other programs (figures).
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& fill);
 
+/// A progress bar on stderr, shown only when stderr is a terminal and the work has taken
+/// more than a second; redrawn at most ten times a second.
+class ProgressBar {
+ public:
+  ProgressBar(std::string label, double total);
+  void update(double done);
+  ~ProgressBar();
+
+ private:
+  std::string label_;
+  double total_;
+  bool terminal_;
+  bool shown_ = false;
+  double start_;
+  double last_draw_ = 0.0;
+};
+
 /// A number as JSON/CSV prints it: shortest round-trip form.
 std::string number(double value);
 

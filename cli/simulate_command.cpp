@@ -79,6 +79,28 @@ std::string to_json(const std::string& model, const Inputs& in, const Trajectory
   return out.dump() + "\n";
 }
 
+/// The linear models sample by sample, in chunks so a long run shows its progress (each
+/// sample is computed on its own, so chunking changes nothing).
+Trajectory simulate_linear_in_chunks(LinearModelKind kind, const Inputs& in, const std::vector<double>& times,
+                                     const std::string& method, ProgressBar& progress) {
+  const LinearModel model = linear_model(kind, in.body());
+  const LinearMethod how = method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;
+  constexpr std::size_t kChunk = 1 << 16;
+  if (times.size() <= kChunk) return simulate_linear(model, in.state(), times, how);
+  Trajectory out;
+  out.reserve(times.size());
+  for (std::size_t begin = 0; begin < times.size(); begin += kChunk) {
+    const std::vector<double> part(times.begin() + static_cast<std::ptrdiff_t>(begin),
+                                   times.begin() + static_cast<std::ptrdiff_t>(std::min(times.size(), begin + kChunk)));
+    const Trajectory piece = simulate_linear(model, in.state(), part, how);
+    for (auto [to, from] : {std::pair{&out.t, &piece.t}, {&out.theta, &piece.theta}, {&out.phi, &piece.phi},
+                            {&out.theta_rate, &piece.theta_rate}, {&out.phi_rate, &piece.phi_rate}})
+      to->insert(to->end(), from->begin(), from->end());
+    progress.update(part.back());
+  }
+  return out;
+}
+
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
@@ -130,10 +152,10 @@ Action add_simulate_command(CLI::App& app) {
 
     const auto times = sample_times(o->t_end, static_cast<std::size_t>(o->samples));
     NonlinearSummary summary;
-    const Trajectory tr =
-        nonlinear ? simulate_nonlinear(inputs->body(), inputs->state(), times, options, &summary)
-                  : simulate_linear(linear_model(*kind, inputs->body()), inputs->state(), times,
-                                    o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic);
+    ProgressBar progress("simulate", o->t_end);
+    options.progress = [&](double t) { progress.update(t); };
+    const Trajectory tr = nonlinear ? simulate_nonlinear(inputs->body(), inputs->state(), times, options, &summary)
+                                    : simulate_linear_in_chunks(*kind, *inputs, times, o->method, progress);
     write_output(inputs->output(), inputs->format() == "json"
                                        ? to_json(o->model, *inputs, tr, nonlinear ? &summary : nullptr)
                                        : trajectory_csv(tr));

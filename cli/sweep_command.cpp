@@ -9,7 +9,6 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -71,23 +70,6 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-class Progress {
- public:
-  explicit Progress(std::size_t total) : total_(total), enabled_(isatty(STDERR_FILENO) && total > 0) {}
-  void show(std::size_t done) const {
-    if (!enabled_) return;
-    const int width = 40, filled = static_cast<int>(width * done / total_);
-    std::cerr << fmt::format("\rsweep [{:<{}}] {}/{}", std::string(filled, '#'), width, done, total_) << std::flush;
-  }
-  ~Progress() {
-    if (enabled_) std::cerr << "\n";
-  }
-
- private:
-  std::size_t total_;
-  bool enabled_;
-};
-
 }  // namespace
 
 Action add_sweep_command(CLI::App& app) {
@@ -145,14 +127,14 @@ Action add_sweep_command(CLI::App& app) {
 
     // Chunks in grid order: each is computed in parallel, then appended whole and flushed.
     const std::size_t chunk = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 8 : 256, 20000);
-    Progress progress(total);
+    ProgressBar progress("sweep", static_cast<double>(total));
     while (done < total) {
       const std::size_t end = std::min(total, done + chunk);
       const std::string text = rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
       if (std::fwrite(text.data(), 1, text.size(), out) != text.size() || std::fflush(out) != 0)
         throw Failure("--output: write failed");
       done = end;
-      progress.show(done);
+      progress.update(static_cast<double>(done));
     }
     if (to_file) {
       std::fclose(out);

@@ -505,18 +505,30 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
   reflected.c[3] = -g.c[3];
   const double x_lo = -turning_root(reflected, op, Q == 0.0, -2.0 * (t_perp + beta * op));
 
-  // 1 - u_hi and 1 + u_lo from f(+-1) = -4 P^2, -4 Q^2 = beta prod(+-1 - u_i) when small:
-  // exact to rounding where the difference of the roots would not be.
+  // 1 - u_hi and 1 + u_lo: the difference om - x_hi loses digits near a vertical passage;
+  // f(+-1) = -4 P^2, -4 Q^2 = beta prod(+-1 - u_i) gives them to rounding unless the third
+  // root is near +-1 too (near a separatrix). Take whichever has the smaller error bound.
   const double one_minus_lo = om - x_lo, one_plus_hi = op + x_hi;
-  const double bm = -g.c[2] - beta * (x_lo + x_hi + om);  // beta (u_third - 1) > 0
+  const double bm = -g.c[2] - beta * (x_lo + x_hi + om);        // beta (u_third - 1) > 0
   const double bp = beta * op - g.c[2] - beta * (x_lo + x_hi);  // beta (u_third + 1) > 0
-  double one_minus_hi = om - x_hi, one_plus_lo = op + x_lo;
-  if (P == 0.0 && x_hi == om) one_minus_hi = 0.0;
-  else if (P != 0.0 && one_minus_hi < 0.5 && bm > 0.0 && one_minus_lo > 0.0)
-    one_minus_hi = 4.0 * P * P / (bm * one_minus_lo);
-  if (Q == 0.0 && x_lo == -op) one_plus_lo = 0.0;
-  else if (Q != 0.0 && one_plus_lo < 0.5 && bp > 0.0 && one_plus_hi > 0.0)
-    one_plus_lo = 4.0 * Q * Q / (bp * one_plus_hi);
+  const double b_size = std::abs(g.c[2]) + std::abs(beta) * (std::abs(x_lo) + std::abs(x_hi) + 2.0);
+  auto closer_end = [&](double e, double x, double x_other, double one_other, double pq,
+                        double pq_size, double bk, bool end_is_root) {
+    if (end_is_root && std::abs(x) == e) return 0.0;  // the motion reaches the vertical exactly
+    const double by_difference = e - std::abs(x);
+    if (pq == 0.0 || !(bk > 0.0) || !(one_other > 0.0)) return by_difference;
+    const double by_product = 4.0 * pq * pq / (bk * one_other);
+    // Error bounds in units of eps: |x| for the difference; for the product the relative
+    // errors of (2 P)^2, of bk and of 1 -+ u at the other root.
+    const double err_difference = std::abs(x);
+    const double err_product =
+        by_product * (2.0 * pq_size / std::abs(2.0 * pq) + b_size / bk + std::abs(x_other) / one_other);
+    return err_product < err_difference ? by_product : by_difference;
+  };
+  const double one_minus_hi =
+      closer_end(om, x_hi, x_lo, one_minus_lo, P, std::abs(p0) + std::abs(b * om), bm, P == 0.0);
+  const double one_plus_lo =
+      closer_end(op, x_lo, x_hi, one_plus_hi, Q, std::abs(p0) + std::abs(b * op), bp, Q == 0.0);
 
   top.u_min = u0 + x_lo;
   top.u_max = u0 + x_hi;

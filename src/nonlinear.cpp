@@ -386,6 +386,7 @@ Trajectory simulate(const Body& body, const RigidBodyState& rb0, const std::vect
                              q.vertical_momentum - initial.vertical_momentum,
                              q.axial_momentum - initial.axial_momentum};
     for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
+    if (options.progress) options.progress(t);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 /// dense output (Boost.Odeint).
 
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -32,6 +33,8 @@ struct NonlinearOptions {
   double atol = 1e-12;
   /// Largest number of attempted steps (accepted + rejected) before giving up, > 0.
   std::size_t max_steps = 100'000'000;
+  /// Called with the simulated time (s) after each output sample, if set (a progress bar).
+  std::function<void(double)> progress;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a
   /// one-line "key: rule" message (key "--rtol", "--atol" or "--max-steps").
