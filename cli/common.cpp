@@ -207,9 +207,5 @@ ProgressBar::~ProgressBar() {
   if (shown_) std::cerr << "\n";
 }
 
-std::string number(double value) {
-  if (std::isnan(value)) return "nan";
-  return fmt::format("{}", value);
-}
 
 }  // namespace heavytop::cli

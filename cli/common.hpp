@@ -84,7 +84,5 @@ class ProgressBar {
   double last_draw_ = 0.0;
 };
 
-/// A number as JSON/CSV prints it: shortest round-trip form.
-std::string number(double value);
 
 }  // namespace heavytop::cli

@@ -23,6 +23,13 @@ std::vector<ModelReport> analyse(const Body& body, double spin);
 std::string stability_json(const Body& body, double spin, const std::vector<ModelReport>& reports);
 std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports);
 
+/// A number as JSON/CSV prints it: the shortest form that reads back to the same double.
+std::string number(double value);
+
+/// The names of a trajectory's columns (t, theta, phi, theta_rate, phi_rate, extras) and one by index.
+std::vector<std::string> trajectory_columns(const Trajectory& trajectory);
+const std::vector<double>& trajectory_column(const Trajectory& trajectory, std::size_t index);
+
 /// SPEC's simulate CSV: t,theta,phi,theta_rate,phi_rate then any extra columns.
 std::string trajectory_csv(const Trajectory& trajectory);
 

@@ -29,34 +29,6 @@ struct SimulateOptions {
   CLI::Option* atol_option = nullptr;
 };
 
-std::vector<std::string> columns(const Trajectory& tr) {
-  std::vector<std::string> names{"t", "theta", "phi", "theta_rate", "phi_rate"};
-  for (const auto& [name, values] : tr.extra) names.push_back(name);
-  return names;
-}
-
-const std::vector<double>& column(const Trajectory& tr, std::size_t i) {
-  const std::vector<double>* base[] = {&tr.t, &tr.theta, &tr.phi, &tr.theta_rate, &tr.phi_rate};
-  return i < 5 ? *base[i] : tr.extra[i - 5].second;
-}
-
-}  // namespace
-
-std::string trajectory_csv(const Trajectory& tr) {
-  const auto names = columns(tr);
-  fmt::memory_buffer out;
-  for (std::size_t c = 0; c < names.size(); ++c) fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", names[c]);
-  out.push_back('\n');
-  for (std::size_t i = 0; i < tr.size(); ++i) {
-    for (std::size_t c = 0; c < names.size(); ++c)
-      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", column(tr, c)[i]);
-    out.push_back('\n');
-  }
-  return fmt::to_string(out);
-}
-
-namespace {
-
 std::string to_json(const std::string& model, const Inputs& in, const Trajectory& tr,
                     const NonlinearSummary* summary) {
   nlohmann::ordered_json out;
@@ -66,9 +38,9 @@ std::string to_json(const std::string& model, const Inputs& in, const Trajectory
   const InitialState& s = in.state();
   out["motion"] = {{"spin", s.spin}, {"theta0", s.theta0}, {"phi0", s.phi0},
                    {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}};
-  const auto names = columns(tr);
+  const auto names = trajectory_columns(tr);
   out["columns"] = names;
-  for (std::size_t c = 0; c < names.size(); ++c) out[names[c]] = column(tr, c);
+  for (std::size_t c = 0; c < names.size(); ++c) out[names[c]] = trajectory_column(tr, c);
   if (summary) {
     out["summary"] = {{"steps", summary->steps},
                       {"rejected_steps", summary->rejected_steps},

@@ -1,0 +1,188 @@
+// The text, JSON and CSV forms of the results, shared by the commands, the report and the
+// Python bindings (so that every route prints the same thing).
+#include "formats.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace heavytop::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json optional_number(const std::optional<double>& x) { return x ? Json(*x) : Json(nullptr); }
+
+}  // namespace
+
+std::vector<ModelReport> analyse(const Body& body, double spin) {
+  std::vector<ModelReport> reports;
+  for (LinearModelKind kind : kLinearModels) {
+    const LinearModel model = linear_model(kind, body);
+    auto intervals = stable_spin_intervals(model);
+    auto critical = critical_spin(intervals);
+    reports.push_back({kind, linear_stability(model, spin), std::move(intervals), critical});
+  }
+  return reports;
+}
+
+std::string stability_json(const Body& body, double spin, const std::vector<ModelReport>& reports) {
+  Json out;
+  out["body"] = {{"A", body.A},       {"B", body.B},
+                 {"C", body.C},       {"mass", body.mass},
+                 {"gravity", body.gravity}, {"length", body.length}};
+  out["spin"] = spin;
+  Json models = Json::object();
+  for (const auto& r : reports) {
+    Json m;
+    m["stable"] = r.verdict.stable;
+    m["critical_spin"] = optional_number(r.critical);
+    m["stable_spin_intervals"] = Json::array();
+    for (const auto& i : r.intervals)
+      m["stable_spin_intervals"].push_back({i.lo, optional_number(i.hi)});
+    m["eigenvalues"] = Json::array();
+    for (const auto& l : r.verdict.eigenvalues) m["eigenvalues"].push_back({l.real(), l.imag()});
+    if (r.verdict.stable) m["frequencies"] = r.verdict.frequencies;
+    m["reason"] = r.verdict.reason;
+    models[std::string(name(r.kind))] = m;
+  }
+  out["models"] = models;
+  return out.dump(2) + "\n";
+}
+
+namespace {
+
+std::string intervals_text(const std::vector<SpinInterval>& intervals) {
+  if (intervals.empty()) return "none";
+  std::string text;
+  for (const auto& i : intervals) {
+    if (!text.empty()) text += ", ";
+    text += i.hi ? fmt::format("[{:.6g}, {:.6g}]", i.lo, *i.hi) : fmt::format("above {:.6g}", i.lo);
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports) {
+  std::ostringstream out;
+  out << fmt::format("Body: A = {:g}, B = {:g}, C = {:g} kg m^2; m g R = {:g} N m ({})\n", body.A,
+                     body.B, body.C, body.mgR(),
+                     body.length > 0 ? "centre of mass above O" :
+                     body.length < 0 ? "hanging: centre of mass below O" : "centre of mass at O");
+  out << fmt::format("Spin: w0 = {:g} rad/s ({:.0f} rpm)\n\n", spin, spin * 30.0 / M_PI);
+  out << fmt::format("{:<13} {:<9} {:>16}  {:<28} {}\n", "model", "verdict", "critical rad/s",
+                     "stable spins (rad/s)", "why");
+  for (const auto& r : reports) {
+    out << fmt::format("{:<13} {:<9} {:>16}  {:<28} {}\n", name(r.kind),
+                       r.verdict.stable ? "stable" : "UNSTABLE",
+                       r.critical ? fmt::format("{:.6g}", *r.critical) : "none",
+                       intervals_text(r.intervals), r.verdict.reason);
+  }
+  out << "\n(first-order: the paper's model (4), (9); body-fixed: its model (5), which the paper "
+         "itself calls erroneous; linearized: the exact linearisation, the one to trust.)\n";
+  const auto& paper = reports[0];
+  const auto& truth = reports[2];
+  if (paper.verdict.stable != truth.verdict.stable) {
+    out << fmt::format(
+        "\nWARNING: the paper's model (4) says {} at this spin, but the exact linearisation says "
+        "{}.\n  Model (4) is the linearisation only for A = B (erratum E3); trust `linearized`.\n",
+        paper.verdict.stable ? "stable" : "unstable", truth.verdict.stable ? "stable" : "unstable");
+  } else if (paper.critical != truth.critical &&
+             !(paper.critical && truth.critical &&
+               std::abs(*paper.critical - *truth.critical) <= 1e-9 * *truth.critical)) {
+    out << fmt::format(
+        "\nNote: the paper's condition (9) puts the critical spin at {}, the exact linearisation "
+        "at {} (erratum E3).\n",
+        paper.critical ? fmt::format("{:.6g} rad/s", *paper.critical) : "none",
+        truth.critical ? fmt::format("{:.6g} rad/s", *truth.critical) : "none (no spin stabilises it)");
+  }
+  if (std::abs(body.A - body.B) <= 1e-12 * std::max(body.A, body.B) && body.mgR() > 0)
+    out << "\nSymmetric top: the classical sleeping-top criterion C^2 w0^2 > 4 A m g R applies "
+           "(strictly: at equality the motion grows, erratum E2).\n";
+  return out.str();
+}
+
+
+std::string number(double value) {
+  if (std::isnan(value)) return "nan";
+  return fmt::format("{}", value);
+}
+
+std::vector<std::string> trajectory_columns(const Trajectory& tr) {
+  std::vector<std::string> names{"t", "theta", "phi", "theta_rate", "phi_rate"};
+  for (const auto& [name, values] : tr.extra) names.push_back(name);
+  return names;
+}
+const std::vector<double>& trajectory_column(const Trajectory& tr, std::size_t i) {
+  const std::vector<double>* base[] = {&tr.t, &tr.theta, &tr.phi, &tr.theta_rate, &tr.phi_rate};
+  return i < 5 ? *base[i] : tr.extra[i - 5].second;
+}
+
+std::string trajectory_csv(const Trajectory& tr) {
+  const auto names = trajectory_columns(tr);
+  fmt::memory_buffer out;
+  for (std::size_t c = 0; c < names.size(); ++c) fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", names[c]);
+  out.push_back('\n');
+  for (std::size_t i = 0; i < tr.size(); ++i) {
+    for (std::size_t c = 0; c < names.size(); ++c)
+      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", trajectory_column(tr, c)[i]);
+    out.push_back('\n');
+  }
+  return fmt::to_string(out);
+}
+
+
+std::string comparison_json(const Comparison& c) {
+  Json out;
+  out["nonlinear"] = {{"nutation_frequency", optional_number(c.nonlinear_frequencies.nutation)},
+                      {"precession_rate", optional_number(c.nonlinear_frequencies.precession)},
+                      {"steps", c.summary.steps},
+                      {"max_relative_energy_drift", c.summary.max_relative_energy_drift}};
+  Json models = Json::object();
+  for (const auto& m : c.models) {
+    models[m.model] = {{"max_angle_error", m.max_angle_error},
+                       {"final_angle_error", m.final_angle_error},
+                       {"nutation_frequency", optional_number(m.frequencies.nutation)},
+                       {"precession_rate", optional_number(m.frequencies.precession)},
+                       {"nutation_relative_error", optional_number(m.nutation_relative_error)},
+                       {"precession_relative_error", optional_number(m.precession_relative_error)}};
+  }
+  out["models"] = models;
+  return out.dump(2) + "\n";
+}
+
+std::string comparison_csv(const Comparison& c) {
+  std::string out = "model,max_angle_error,final_angle_error,nutation_frequency,precession_rate,"
+                    "nutation_relative_error,precession_relative_error\n";
+  auto cell = [](const std::optional<double>& x) { return x ? number(*x) : std::string(); };
+  out += fmt::format("nonlinear,0,0,{},{},0,0\n", cell(c.nonlinear_frequencies.nutation),
+                     cell(c.nonlinear_frequencies.precession));
+  for (const auto& m : c.models)
+    out += fmt::format("{},{},{},{},{},{},{}\n", m.model, number(m.max_angle_error), number(m.final_angle_error),
+                       cell(m.frequencies.nutation), cell(m.frequencies.precession),
+                       cell(m.nutation_relative_error), cell(m.precession_relative_error));
+  return out;
+}
+
+std::string comparison_text(const Comparison& c, double t_end) {
+  auto freq = [](const std::optional<double>& x) { return x ? fmt::format("{:.6g}", *x) : std::string("-"); };
+  auto rel = [](const std::optional<double>& x) { return x ? fmt::format("{:.2e}", *x) : std::string("-"); };
+  std::ostringstream out;
+  out << fmt::format("Every model against the full nonlinear body over {:g} s (angles in rad, frequencies in rad/s)\n\n", t_end);
+  out << fmt::format("{:<15} {:>12} {:>12} {:>12} {:>10} {:>12} {:>10}\n", "model", "max error", "final error",
+                     "nutation", "rel. err", "precession", "rel. err");
+  out << fmt::format("{:<15} {:>12} {:>12} {:>12} {:>10} {:>12} {:>10}\n", "nonlinear", "(truth)", "",
+                     freq(c.nonlinear_frequencies.nutation), "", freq(c.nonlinear_frequencies.precession), "");
+  for (const auto& m : c.models)
+    out << fmt::format("{:<15} {:>12.3e} {:>12.3e} {:>12} {:>10} {:>12} {:>10}\n", m.model, m.max_angle_error,
+                       m.final_angle_error, freq(m.frequencies.nutation), rel(m.nutation_relative_error),
+                       freq(m.frequencies.precession), rel(m.precession_relative_error));
+  out << fmt::format("\nIntegrator: {} steps, energy drift {:.1e} (relative).\n", c.summary.steps,
+                     c.summary.max_relative_energy_drift);
+  return out.str();
+}
+
+}  // namespace heavytop::cli
