@@ -3,6 +3,7 @@
 
 #include "heavytop/linear_motion.hpp"
 #include "heavytop/stability.hpp"
+#include "heavytop/sweep.hpp"
 
 namespace {
 
@@ -60,3 +61,13 @@ void BM_StabilityAnalysis(benchmark::State& state) {
 BENCHMARK(BM_StabilityAnalysis);
 
 }  // namespace
+
+// A 400 x 400 stability map (B/A against spin) of the linear models, on every core, as
+// `heavytop sweep --vary B/A=0.5:2:400 --vary spin=0:5:400` computes it (without printing).
+void BM_Sweep400x400(benchmark::State& state) {
+  const Body base{.A = 1.0, .B = 1.0, .C = 1.5, .mass = 1.0, .gravity = 1.0, .length = 1.0};
+  const std::vector<SweepAxis> axes{parse_sweep_axis("B/A=0.5:2:400"), parse_sweep_axis("spin=0:5:400")};
+  for (auto _ : state) benchmark::DoNotOptimize(sweep_verdicts(base, InitialState{}, axes, SweepOptions{}, 0, grid_size(axes)));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(grid_size(axes)));
+}
+BENCHMARK(BM_Sweep400x400)->Unit(benchmark::kMillisecond)->UseRealTime();

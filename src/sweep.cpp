@@ -3,7 +3,9 @@
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <atomic>
 #include <mutex>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -130,21 +132,36 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
   std::vector<SweepVerdict> out(end - begin);
   std::exception_ptr failure;
   std::once_flag failed;
-  const auto count = static_cast<std::ptrdiff_t>(end - begin);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
-    try {
-      Body body = base;
-      InitialState state = base_state;
-      apply_grid_point(axes, begin + static_cast<std::size_t>(i), body, state);
-      SweepVerdict& v = out[static_cast<std::size_t>(i)];
-      for (std::size_t m = 0; m < kLinearModels.size(); ++m)
-        v.linear[m] = linear_stability(linear_model(kLinearModels[m], body), state.spin).stable;
-      if (options.nonlinear)
-        v.nonlinear = max_tilt(body, state, options.horizon, options.max_tilt, options.integrator) <= options.max_tilt;
-    } catch (...) {
-      std::call_once(failed, [&] { failure = std::current_exception(); });
+  // Work is handed out in small blocks from an atomic counter; each point's verdict lands in
+  // its own slot, so the result does not depend on the threads. Threads end with the call
+  // (no pool left spinning while the caller writes the rows).
+  std::atomic<std::size_t> next{0};
+  constexpr std::size_t kBlock = 16;
+  auto work = [&] {
+    for (std::size_t first; (first = next.fetch_add(kBlock)) < out.size();) {
+      for (std::size_t i = first; i < std::min(out.size(), first + kBlock); ++i) {
+        try {
+          Body body = base;
+          InitialState state = base_state;
+          apply_grid_point(axes, begin + i, body, state);
+          SweepVerdict& v = out[i];
+          for (std::size_t m = 0; m < kLinearModels.size(); ++m)
+            v.linear[m] = linear_stability(linear_model(kLinearModels[m], body), state.spin).stable;
+          if (options.nonlinear)
+            v.nonlinear = max_tilt(body, state, options.horizon, options.max_tilt, options.integrator) <= options.max_tilt;
+        } catch (...) {
+          std::call_once(failed, [&] { failure = std::current_exception(); });
+        }
+      }
     }
+  };
+  const std::size_t threads = std::min<std::size_t>(
+      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency()),
+      (out.size() + kBlock - 1) / kBlock);
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
   }
   if (failure) std::rethrow_exception(failure);
   return out;

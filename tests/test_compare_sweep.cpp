@@ -4,7 +4,6 @@
 #include <numbers>
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include "heavytop/compare.hpp"
 #include "heavytop/linear_motion.hpp"
@@ -69,10 +68,11 @@ TEST(Sweep, VerdictsEqualSingleStabilityCallsAndDoNotDependOnThreads) {
   const InitialState state{.spin = 0.0};
   const std::vector<SweepAxis> axes{parse_sweep_axis("B/A=0.6:2.4:37"), parse_sweep_axis("spin=0:4:41")};
   ASSERT_EQ(grid_size(axes), 37u * 41u);
-  omp_set_num_threads(1);
-  const auto one = sweep_verdicts(base, state, axes, SweepOptions{}, 0, grid_size(axes));
-  omp_set_num_threads(2);
-  const auto two = sweep_verdicts(base, state, axes, SweepOptions{}, 0, grid_size(axes));
+  SweepOptions serial, parallel;
+  serial.threads = 1;
+  parallel.threads = 3;
+  const auto one = sweep_verdicts(base, state, axes, serial, 0, grid_size(axes));
+  const auto two = sweep_verdicts(base, state, axes, parallel, 0, grid_size(axes));
   for (std::size_t i = 0; i < one.size(); ++i) {
     EXPECT_EQ(one[i].linear, two[i].linear) << i;
     const double ratio = 0.6 + 1.8 * static_cast<double>(i / 41) / 36.0, spin = 4.0 * static_cast<double>(i % 41) / 40.0;

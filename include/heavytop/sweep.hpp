@@ -44,6 +44,7 @@ struct SweepOptions {
   double horizon = 100.0;       ///< s, simulated time of each nonlinear run (> 0)
   double max_tilt = 0.5;        ///< rad, the nonlinear run is "stable" if its tilt stays <= this
   NonlinearOptions integrator;  ///< tolerances of the nonlinear runs
+  unsigned threads = 0;         ///< worker threads; 0: one per core
 
   /// True if every setting is in range; else false with a one-line "key: rule" in `why`.
   bool IsValid(std::string* why) const;
@@ -62,7 +63,7 @@ void validate_sweep(const Body& base, const InitialState& base_state,
                     const std::vector<SweepAxis>& axes, const SweepOptions& options);
 
 /// The verdicts at grid points [begin, end), in grid order, computed in parallel on every
-/// core (OpenMP); the result does not depend on the number of threads.
+/// core; the result does not depend on the number of threads.
 std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& base_state,
                                          const std::vector<SweepAxis>& axes,
                                          const SweepOptions& options, std::size_t begin,
