@@ -5,13 +5,13 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "common.hpp"
 
 #ifdef HEAVYTOP_HAVE_SYMBOLIC
 #include "heavytop/symbolic/derive.hpp"
+#include "heavytop/symbolic/json.hpp"
 #include "heavytop/symbolic/print.hpp"
 #include "heavytop/symbolic/symbols.hpp"
 #endif
@@ -27,7 +27,6 @@ Action add_derive_command(CLI::App& app) {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
 using GiNaC::ex;
 using GiNaC::matrix;
 using namespace heavytop::symbolic;
@@ -48,7 +47,6 @@ struct Options {
 // ---- expressions -------------------------------------------------------------------------
 
 std::string text(const ex& e) { return to_string(tidy(e), Style::Text); }
-std::string cas(const ex& e) { return to_string(tidy(e), Style::Cas); }
 std::string tex(const ex& e) { return to_string(tidy(e), Style::Latex); }
 // T, V and angular velocities read best expanded, term by term.
 std::string text_expanded(const ex& e) { return to_string(e.expand(), Style::Text); }
@@ -79,16 +77,6 @@ std::string matrix_tex(const matrix& a, std::string (*show)(const ex&) = tex) {
   return out + "\\end{array}\\right)";
 }
 
-Json matrix_json(const matrix& a) {
-  Json rows = Json::array();
-  for (unsigned i = 0; i < a.rows(); ++i) {
-    Json row = Json::array();
-    for (unsigned j = 0; j < a.cols(); ++j) row.push_back(cas(a(i, j)));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 // The equations as the paper prints them: inertia and gyroscopic terms = -K q.
 std::vector<std::pair<ex, ex>> equations(const Derivation& d) {
   const Symbols& s = symbols();
@@ -116,18 +104,6 @@ std::string condition_text(const StabilityCondition& c) {
   std::string out;
   for (const auto& in : c.all_of)
     out += (out.empty() ? "" : "  and  ") + text(in.lhs) + " " + relation(in) + " " + text(in.rhs);
-  return out;
-}
-
-// A string sympy's parse_expr reads (after ^ -> **): relations joined by &, or True/False.
-std::string condition_cas(const StabilityCondition& c) {
-  if (c.never) return "False";
-  if (c.all_of.empty()) return "True";
-  if (c.all_of.size() == 1)
-    return cas(c.all_of[0].lhs) + " " + relation(c.all_of[0]) + " " + cas(c.all_of[0].rhs);
-  std::string out;
-  for (const auto& in : c.all_of)
-    out += (out.empty() ? "(" : " & (") + cas(in.lhs) + " " + relation(in) + " " + cas(in.rhs) + ")";
   return out;
 }
 
@@ -233,16 +209,6 @@ std::string derivation_latex(const Derivation& d) {
   return out.str();
 }
 
-std::string derivation_json(const Derivation& d) {
-  Json out;
-  out["M"] = matrix_json(d.M);
-  out["G"] = matrix_json(d.G);
-  out["K"] = matrix_json(d.K);
-  out["characteristic_polynomial"] = cas(d.characteristic_polynomial);
-  out["stability_condition"] = condition_cas(d.stability);
-  return out.dump(2) + "\n";
-}
-
 // ---- --rotations -------------------------------------------------------------------------
 
 struct NamedMatrix {
@@ -311,21 +277,6 @@ std::string rotations_latex(const Rotations& r) {
   return out.str();
 }
 
-std::string rotations_json(const Rotations& r) {
-  Json out;
-  for (const auto& [label, value] : named(r)) {
-    Json rows = Json::array();
-    for (unsigned i = 0; i < value->rows(); ++i) {
-      Json row = Json::array();
-      for (unsigned j = 0; j < value->cols(); ++j)
-        row.push_back(to_string(value->operator()(i, j), Style::Cas));
-      rows.push_back(row);
-    }
-    out[label] = rows;
-  }
-  return out.dump(2) + "\n";
-}
-
 // ---- --check -----------------------------------------------------------------------------
 
 std::string result_name(const std::optional<PaperModel>& model) {
@@ -373,28 +324,6 @@ std::string check_text(const std::vector<CheckRow>& rows) {
          "for both sequences (section 6), and only the body-attached frame (euler-body) differs: "
          "model (5).\n";
   return out.str();
-}
-
-std::string check_json(const std::vector<CheckRow>& rows, bool all_ok) {
-  Json out;
-  out["rows"] = Json::array();
-  for (const auto& row : rows) {
-    const Derivation& d = row.derivation;
-    Json r;
-    r["method"] = std::string(name(d.method));
-    r["sequence"] = std::string(name(d.sequence));
-    r["order"] = d.order;
-    r["M"] = matrix_json(d.M);
-    r["G"] = matrix_json(d.G);
-    r["K"] = matrix_json(d.K);
-    r["model"] = row.model ? Json(std::string(name(*row.model))) : Json(nullptr);
-    r["expected"] = row.expected ? Json(std::string(name(*row.expected))) : Json(nullptr);
-    r["as_expected"] = row.as_expected();
-    r["why"] = row.why;
-    out["rows"].push_back(r);
-  }
-  out["all_as_expected"] = all_ok;
-  return out.dump(2) + "\n";
 }
 
 std::string check_latex(const std::vector<CheckRow>& rows) {
@@ -462,7 +391,7 @@ Action add_derive_command(CLI::App& app) {
                                                        : std::vector<int>{1, 2});
       bool all_ok = true;
       for (const auto& row : rows) all_ok = all_ok && row.as_expected();
-      content = o->format == "json"    ? check_json(rows, all_ok)
+      content = o->format == "json"    ? check_json(rows)
                 : o->format == "latex" ? check_latex(rows)
                                        : check_text(rows);
       write_output(o->output, content);

@@ -128,7 +128,7 @@ std::string trajectory_csv(const Trajectory& tr) {
   out.push_back('\n');
   for (std::size_t i = 0; i < tr.size(); ++i) {
     for (std::size_t c = 0; c < names.size(); ++c)
-      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", trajectory_column(tr, c)[i]);
+      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", trajectory_column(tr, c)[i] + 0.0);
     out.push_back('\n');
   }
   return fmt::to_string(out);

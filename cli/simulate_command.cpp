@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "formats.hpp"
+#include "heavytop/lagrange_exact.hpp"
 #include "heavytop/linear_motion.hpp"
 #include "heavytop/nonlinear.hpp"
 
@@ -80,8 +81,8 @@ Action add_simulate_command(CLI::App& app) {
       "simulate", "The motion of one model: CSV columns t,theta,phi,theta_rate,phi_rate (SI units)");
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv", "json"});
   auto o = std::make_shared<SimulateOptions>();
-  o->model_option = cmd->add_option("--model", o->model, "first-order | body-fixed | linearized | nonlinear")
-                        ->check(CLI::IsMember({"first-order", "body-fixed", "linearized", "nonlinear"}))
+  o->model_option = cmd->add_option("--model", o->model, "first-order | body-fixed | linearized | nonlinear | lagrange-exact (A = B)")
+                        ->check(CLI::IsMember({"first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"}))
                         ->default_str(o->model);
   o->t_end_option = cmd->add_option("--t-end", o->t_end, "s, end of the simulated interval (> 0)")
                         ->default_str("10");
@@ -108,15 +109,17 @@ Action add_simulate_command(CLI::App& app) {
     if (!o->rtol_option->count()) o->rtol = inputs->section_number("simulate", "rtol").value_or(o->rtol);
     if (!o->atol_option->count()) o->atol = inputs->section_number("simulate", "atol").value_or(o->atol);
 
-    const bool nonlinear = o->model == "nonlinear";
+    const bool nonlinear = o->model == "nonlinear", exact = o->model == "lagrange-exact";
     const auto kind = linear_model_from_name(o->model);
-    if (!nonlinear && !kind) throw InvalidInput("--model", "must be one of first-order, body-fixed, linearized, nonlinear");
+    if (!nonlinear && !exact && !kind)
+      throw InvalidInput("--model", "must be one of first-order, body-fixed, linearized, nonlinear, lagrange-exact");
+    if (exact) validate_symmetric(inputs->body());
     if (o->method != "analytic" && o->method != "numeric")
       throw InvalidInput("--method", "must be analytic or numeric");
     if (!(std::isfinite(o->t_end) && o->t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
     if (o->samples < 2 || o->samples > 100'000'000) throw InvalidInput("--samples", "must be an integer in [2, 100000000]");
-    if (nonlinear && o->method_option->count())
-      throw InvalidInput("--method", "applies to the linear models only (nonlinear is always integrated)");
+    if (!kind && o->method_option->count())
+      throw InvalidInput("--method", "applies to the linear models only");
     NonlinearOptions options;
     options.rtol = o->rtol;
     options.atol = o->atol;
@@ -127,6 +130,7 @@ Action add_simulate_command(CLI::App& app) {
     ProgressBar progress("simulate", o->t_end);
     options.progress = [&](double t) { progress.update(t); };
     const Trajectory tr = nonlinear ? simulate_nonlinear(inputs->body(), inputs->state(), times, options, &summary)
+                          : exact   ? simulate_lagrange_exact(inputs->body(), inputs->state(), times)
                                     : simulate_linear_in_chunks(*kind, *inputs, times, o->method, progress);
     write_output(inputs->output(), inputs->format() == "json"
                                        ? to_json(o->model, *inputs, tr, nonlinear ? &summary : nullptr)

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "heavytop/lagrange_exact.hpp"
 #include "heavytop/linear_motion.hpp"
 #include "heavytop/linear_models.hpp"
 
@@ -82,6 +83,9 @@ Comparison compare_models(const Body& body, const InitialState& state,
     c.models.push_back(against(std::string(name(kind)),
                                simulate_linear(linear_model(kind, body), state, times, LinearMethod::Analytic),
                                c.nonlinear, c.nonlinear_frequencies));
+  if (std::abs(body.A - body.B) <= kSymmetryTolerance * std::max(body.A, body.B))
+    c.models.push_back(against("lagrange-exact", simulate_lagrange_exact(body, state, times), c.nonlinear,
+                               c.nonlinear_frequencies));
   return c;
 }
 
