@@ -59,7 +59,7 @@ std::optional<double> as_number(const toml::node& node, const std::string& key) 
 }  // namespace
 
 Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(formats.front()) {
-  command.add_option("--config", config_path_, "TOML configuration file (SPEC section 4)")
+  command.add_option("--config", config_path_, "TOML configuration file (SPEC section 4); without it the built-in toy top")
       ->type_name("FILE");
   for (const KeySpec& spec : kKeys) {
     Override& o = overrides_[spec.key];

@@ -11,7 +11,8 @@
 int main(int argc, char** argv) {
   using namespace heavytop;
   CLI::App app{"heavytop: the heavy top (a rigid body about a fixed point in gravity), its "
-               "approximate models, their stability and motion.\nUnits SI; conventions in SPEC.md."};
+               "approximate models, their stability and motion.\nUnits SI; conventions in SPEC.md. With no command, "
+               "writes the built-in example's report to ./heavytop-report."};
   app.require_subcommand(0, 1);
   std::map<CLI::App*, cli::Action> actions;
   auto add = [&](cli::Action (*make)(CLI::App&)) {
