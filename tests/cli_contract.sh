@@ -1,17 +1,7 @@
 #!/usr/bin/env bash
 # The command line as scripts use it (SPEC sections 1, 4, 5): exit codes, one-line errors
 # naming the key, no file written on bad input, SPEC's JSON keys and CSV columns.
-set -u
-H=$(realpath "${HEAVYTOP:?set HEAVYTOP to the heavytop binary}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-passes=0
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/harness.sh"
 
 cat > ok.toml <<'TOML'
 [body]
@@ -131,5 +121,4 @@ PY
 done
 check "no temporary files left" test -z "$(ls -A | grep tmp)"
 
-echo "$passes passed, $failures failed"
-[ $failures -eq 0 ]
+finish

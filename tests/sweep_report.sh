@@ -2,17 +2,7 @@
 # sweep and report as a user runs them: CSV rows, a sweep killed midway and resumed (the rows
 # equal an uninterrupted run's, none twice), and the report's figures valid PNG/SVG with
 # the expected series.
-set -u
-H=$(realpath "${HEAVYTOP:?set HEAVYTOP to the heavytop binary}")
-work=$(mktemp -d)
-trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-passes=0
-check() {
-  local name=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/harness.sh"
 body=(--A 1 --B 1 --C 1.5 --mass 1 --gravity 1 --length 1)
 
 # ---- a linear sweep: one row per grid point, in grid order -----------------------------------
@@ -91,5 +81,4 @@ for f in ("stability.json", "comparison.json", "comparison.csv", "trajectories.c
 assert "E3" in html and "http" not in html.replace("http-equiv", "")   # nothing fetched from a network
 PY
 
-echo "$passes passed, $failures failed"
-[ $failures -eq 0 ]
+finish

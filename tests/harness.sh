@@ -1,0 +1,17 @@
+# Shared by the shell tests: the binary in $H, a scratch folder as the working directory
+# (removed at exit, with any background job), and check NAME COMMAND... counting results.
+set -u
+H=$(realpath "${HEAVYTOP:?set HEAVYTOP to the heavytop binary}")
+work=$(mktemp -d)
+trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+passes=0
+check() {
+  local name=$1; shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+finish() {
+  echo "$passes passed, $failures failed"
+  [ $failures -eq 0 ]
+}
