@@ -1,14 +1,7 @@
 // heavytop stability: each linear model's verdict at the spin, its stable spins, its eigenvalues.
-#include <cmath>
-#include <sstream>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "commands.hpp"
 #include "common.hpp"
 #include "formats.hpp"
-#include "heavytop/stability.hpp"
 
 namespace heavytop::cli {
 

@@ -7,7 +7,10 @@
 // heavytop.InvalidInput, a ValueError whose message is the command line's "<key>: <rule>".
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <memory>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -73,6 +76,41 @@ NonlinearOptions tolerances(std::optional<double> rtol, std::optional<double> at
   if (atol) options.atol = *atol;
   validate(options);
   return options;
+}
+
+// ---- interruption ----------------------------------------------------------------------------
+
+/// Thrown (not a std::exception, so nothing on the way catches it) when Python has a pending
+/// signal, e.g. KeyboardInterrupt from Ctrl-C or a Jupyter interrupt; the error is set.
+struct Interrupted {};
+
+/// True if Python has a pending signal (its error indicator is then set). Takes the GIL briefly;
+/// called with it released.
+bool signalled() {
+  const py::gil_scoped_acquire gil;
+  return PyErr_CheckSignals() != 0;
+}
+
+/// A nonlinear integrator's progress callback that polls signals at most every 0.1 s.
+std::function<void(double)> poll_signals() {
+  auto next = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+  return [next](double) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < *next) return;
+    *next = now + std::chrono::milliseconds(100);
+    if (signalled()) throw Interrupted{};
+  };
+}
+
+/// Runs `compute` with the GIL released; an interruption becomes the pending Python error.
+template <class Compute>
+auto without_gil(Compute&& compute) {
+  try {
+    const py::gil_scoped_release unlocked;
+    return compute();
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
+  }
 }
 
 // ---- simulate: the models by name --------------------------------------------------------------
@@ -143,11 +181,9 @@ py::dict simulate(const Body& body, const std::string& model, double spin, doubl
   settings.method = how == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;
   settings.integrator = tolerances(rtol, atol);
 
-  Trajectory tr;
-  {
-    py::gil_scoped_release unlocked;
-    tr = chosen->run(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), settings);
-  }
+  settings.integrator.progress = poll_signals();
+  Trajectory tr = without_gil(
+      [&] { return chosen->run(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), settings); });
   const auto names = cli::trajectory_columns(tr);
   py::dict out;
   std::vector<double>* base[] = {&tr.t, &tr.theta, &tr.phi, &tr.theta_rate, &tr.phi_rate};
@@ -161,12 +197,7 @@ py::dict simulate(const Body& body, const std::string& model, double spin, doubl
 py::object stability(const Body& body, double spin) {
   validate(body);
   motion(spin, 0, 0, 0, 0);
-  std::string text;
-  {
-    py::gil_scoped_release unlocked;
-    text = cli::stability_json(body, spin, cli::analyse(body, spin));
-  }
-  return from_json(text);
+  return from_json(without_gil([&] { return cli::stability_json(body, spin, cli::analyse(body, spin)); }));
 }
 
 py::object compare(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
@@ -176,13 +207,11 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   if (!(std::isfinite(t_end) && t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
   if (samples < 3 || samples > 100'000'000) throw InvalidInput("--samples", "must be an integer in [3, 100000000]");
-  const NonlinearOptions options = tolerances(rtol, atol);
-  std::string text;
-  {
-    py::gil_scoped_release unlocked;
-    text = cli::comparison_json(compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options));
-  }
-  return from_json(text);
+  NonlinearOptions options = tolerances(rtol, atol);
+  options.progress = poll_signals();
+  return from_json(without_gil([&] {
+    return cli::comparison_json(compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options));
+  }));
 }
 
 // ---- sweep ------------------------------------------------------------------------------------
@@ -215,30 +244,47 @@ std::vector<SweepAxis> point_axes(const std::vector<VariedKey>& keys, std::size_
   return axes;
 }
 
-/// f(i) for i in [0, count) on every core, in blocks from an atomic counter (as the core's
-/// sweep does); rethrows the first exception once every thread has ended.
-void for_each_point(std::size_t count, const std::function<void(std::size_t)>& f) {
-  constexpr std::size_t kBlock = 16;
+/// f(begin, end) over [0, count) in blocks of `block`, handed out from an atomic counter to one
+/// worker per core (as the core's sweep does). The calling thread, the GIL released, polls
+/// Python's signals meanwhile: on Ctrl-C (a Jupyter interrupt) the workers stop at their next
+/// block and Interrupted is thrown. Otherwise rethrows the first failure once all have ended.
+void parallel_blocks(std::size_t count, std::size_t block, const std::function<void(std::size_t, std::size_t)>& f) {
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::once_flag failed;
-  auto work = [&] {
-    for (std::size_t first; (first = next.fetch_add(kBlock)) < count;)
-      for (std::size_t i = first; i < std::min(count, first + kBlock); ++i) {
-        try {
-          f(i);
-        } catch (...) {
-          std::call_once(failed, [&] { failure = std::current_exception(); });
-        }
-      }
-  };
+  std::mutex mutex;
+  std::condition_variable finished;
   const std::size_t threads =
-      std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), (count + kBlock - 1) / kBlock);
+      std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), (count + block - 1) / block);
+  std::size_t running = threads;
+  auto work = [&] {
+    for (std::size_t first; !stop && (first = next.fetch_add(block)) < count;) {
+      try {
+        f(first, std::min(count, first + block));
+      } catch (...) {
+        std::call_once(failed, [&] { failure = std::current_exception(); });
+        stop = true;
+      }
+    }
+    const std::lock_guard lock(mutex);
+    if (--running == 0) finished.notify_one();
+  };
+  bool interrupted = false;
   {
     std::vector<std::jthread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
+    for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(work);
+    std::unique_lock lock(mutex);
+    while (!finished.wait_for(lock, std::chrono::milliseconds(100), [&] { return running == 0; })) {
+      lock.unlock();
+      if (!interrupted && signalled()) {
+        interrupted = true;
+        stop = true;
+      }
+      lock.lock();
+    }
   }
+  if (interrupted) throw Interrupted{};
   if (failure) std::rethrow_exception(failure);
 }
 
@@ -269,13 +315,22 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
   options.max_tilt = max_tilt;
   options.integrator = tolerances(rtol, atol);
 
-  // The command line's grid when every array is one (bit for bit): one call, exactly its path.
+  // When every array is the command line's START:STOP:COUNT grid (bit for bit), its very calls.
   std::vector<SweepAxis> axes(keys.size());
   bool cli_grid = true;
   for (std::size_t k = 0; k < keys.size(); ++k) cli_grid = is_cli_grid(keys[k], axes[k]) && cli_grid;
   std::size_t total = 1;
   for (const auto& k : keys) total *= k.size();
   if (total > 100'000'000) throw InvalidInput("--vary", "the grid must have at most 100000000 points");
+  // Every point is checked before anything is computed, as the command line does.
+  without_gil([&] {
+    if (cli_grid) {
+      validate_sweep(body, state, axes, options);
+    } else {
+      validate_sweep(body, state, {}, options);
+      for (std::size_t i = 0; i < total; ++i) validate_sweep(body, state, point_axes(keys, i), options);
+    }
+  });
 
   py::dict out;
   std::vector<double*> value_columns;
@@ -292,22 +347,20 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
     out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m])) : "nonlinear")] = column;
   }
 
-  {
-    py::gil_scoped_release unlocked;
-    std::vector<SweepVerdict> verdicts;
+  without_gil([&] {
+    std::vector<SweepVerdict> verdicts(total);
+    SweepOptions one_thread = options;
+    one_thread.threads = 1;  // the blocks are spread over the threads here
     if (cli_grid) {
-      validate_sweep(body, state, axes, options);
-      verdicts = sweep_verdicts(body, state, axes, options, 0, total);
+      // The command line's own grid: the calls it makes, block by block.
+      parallel_blocks(total, 16, [&](std::size_t begin, std::size_t end) {
+        std::ranges::copy(sweep_verdicts(body, state, axes, one_thread, begin, end), verdicts.begin() + begin);
+      });
     } else {
-      // Any values: each point is a grid of one point at its exact values, judged by the same
-      // library call (sweep_verdicts), the points in parallel.
-      validate_sweep(body, state, {}, options);
-      for (std::size_t i = 0; i < total; ++i) validate_sweep(body, state, point_axes(keys, i), options);
-      verdicts.resize(total);
-      SweepOptions one_point = options;
-      one_point.threads = 1;  // the points are spread over the threads here
-      for_each_point(total, [&](std::size_t i) {
-        verdicts[i] = sweep_verdicts(body, state, point_axes(keys, i), one_point, 0, 1)[0];
+      // Any values: each point is a grid of one point at its exact values, judged by the same call.
+      parallel_blocks(total, 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+          verdicts[i] = sweep_verdicts(body, state, point_axes(keys, i), one_thread, 0, 1)[0];
       });
     }
     for (std::size_t i = 0; i < total; ++i) {
@@ -319,7 +372,7 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
       for (std::size_t m = 0; m < kLinearModels.size(); ++m) verdict_columns[m][i] = verdicts[i].linear[m];
       if (nonlinear) verdict_columns.back()[i] = verdicts[i].nonlinear.value_or(false);
     }
-  }
+  });
   return out;
 }
 
@@ -419,9 +472,9 @@ The same computation as `heavytop simulate --format csv`, column for column:
     t_end         s, end of the simulated interval (> 0; default 10)          [--t-end]
     samples       rows, at t_i = i t_end / (samples - 1) (>= 2; default 1001)  [--samples]
     method        linear models: "analytic" (closed form, the default) |
-                  "numeric" (matrix exponential); not for nonlinear           [--method]
-    rtol, atol    nonlinear: relative / absolute tolerance per step
-                  (default 1e-12 each)                                        [--rtol, --atol]
+                  "numeric" (matrix exponential); linear models only          [--method]
+    rtol          nonlinear: relative tolerance per step (default 1e-12)      [--rtol]
+    atol          nonlinear: absolute tolerance per step (default 1e-12)      [--atol]
 
 Returns a dict of float64 arrays of length `samples`, in the CSV's column order:
     t (s), theta (rad), phi (rad), theta_rate (rad/s), phi_rate (rad/s),
@@ -430,7 +483,8 @@ axial_momentum (kg m^2/s, C w3; conserved only when A == B), energy_drift,
 vertical_momentum_drift, axial_momentum_drift (each minus its value at t = 0).
 theta, phi are SPEC section 2's exact angles of the spin axis for every model.
 
-The arrays are filled in C++ with the GIL released. Bad input raises InvalidInput (a
+The arrays are filled in C++ with the GIL released; Ctrl-C (a Jupyter interrupt) stops a
+nonlinear run within 0.1 s and raises KeyboardInterrupt. Bad input raises InvalidInput (a
 ValueError) naming the key as the command line does: "motion.spin: must be a finite number",
 "--samples: must be an integer in [2, 100000000]"; an integrator that cannot meet its
 tolerance raises RuntimeError.
@@ -489,10 +543,12 @@ Returns a dict, one array per CSV column, one element per grid point (row-major,
 key slowest): each key's values (float64), then "first-order", "body-fixed", "linearized" and,
 when asked, "nonlinear" (bool: stable). Reshape with .reshape(len(values1), len(values2)).
 
-Any values are judged exactly as given. When an array is exactly the command line's
-START:STOP:COUNT grid (grid_values(start, stop, count), bit for bit) the whole sweep is one
-call of the command line's own routine; otherwise each point is judged by that same routine
-as a grid of one point, the points in parallel: the verdicts are the same either way.
+Any values are judged exactly as given. When every array is the command line's
+START:STOP:COUNT grid (grid_values(start, stop, count), bit for bit) the sweep makes the
+command line's own calls (heavytop::sweep_verdicts over blocks of the grid); otherwise each
+point is judged by that same routine as a grid of one point. Either way the points run in
+parallel, one thread per core, and the verdicts are the same at the same values. Ctrl-C (a
+Jupyter interrupt) stops it within a block and raises KeyboardInterrupt.
 Bad input raises InvalidInput (ValueError) with the command line's message ("--vary: ...").
 )doc";
 
@@ -550,6 +606,12 @@ PYBIND11_MODULE(heavytop, m) {
   });
 
   py::class_<Body>(m, "Body", R"doc(A rigid body turning about a fixed point O in uniform gravity (SPEC section 1). Immutable.
+
+    Body(A, B, C, mass, length, gravity=9.81)
+
+A, B, C (kg m^2): principal moments of inertia about the body axes x, y, z through O; mass (kg);
+length (m): R, signed distance from O to the centre of mass along z (> 0: a top on its tip,
+< 0: a hanging gyroscope); gravity (m/s^2): g, acting along -zeta. mgR (N m): m g R.
 
 Body frame: principal axes x, y, z through O, z the spin (symmetry) axis. Validated exactly as
 the command line validates [body]: A, B, C, mass finite and > 0, gravity finite and >= 0,
@@ -624,6 +686,11 @@ gravity: m/s^2, g (default 9.81), acting along -zeta)doc")
   m.def("derive_rotations", &derive_rotations, kRotationsDoc, "order"_a = 1);
   m.def("derive_check", &derive_check, kCheckDoc, "order"_a = py::none());
 
+#ifdef HEAVYTOP_HAVE_SYMBOLIC
+  m.attr("HAS_DERIVE") = true;
+#else
+  m.attr("HAS_DERIVE") = false;  // built without HEAVYTOP_BUILD_SYMBOLIC (GiNaC): derive*() raise RuntimeError
+#endif
   py::list models;
   for (const auto& model : simulated_models()) models.append(model.name);
   m.attr("MODELS") = py::tuple(models);

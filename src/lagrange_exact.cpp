@@ -163,7 +163,7 @@ double third_kind_complete2(const Pole& p, const Detail& d) {
 }
 
 // The pole of phi' at u = +-1: phi' = P/(1 - u) + Q/(1 + u). `one_a`, `one_b` are 1 -+ u at
-// the two roots, `dn` the change of 1 -+ u from root a to root b's direction (-d or +d).
+// the two roots, `signed_d` the change of 1 -+ u from root a to root b (-d or +d).
 void prepare_pole(Pole& p, double residue, double one_a, double one_b, double signed_d,
                   const Detail& d) {
   p = Pole{};

@@ -1,1 +1,284 @@
-// placeholder: being written (issue 6)
+#include "heavytop/splitting.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "heavytop/frames.hpp"
+#include "heavytop/nonlinear.hpp"
+
+namespace heavytop {
+
+namespace {
+
+// Attitude q = (w, x, y, z) (body-to-fixed) and angular momentum L in body axes.
+struct State {
+  double qw, qx, qy, qz;
+  double l1, l2, l3;
+};
+
+// The constants of the flows.
+struct Flows {
+  double inv_b = 0.0;  // 1/B: rotation about L at |L|/B
+  double c1 = 0.0;     // 1/A - 1/B: rotation about body x at c1 L1
+  double c3 = 0.0;     // 1/C - 1/B: rotation about body z at c3 L3
+  double mgr = 0.0;    // N m
+  bool symmetric = false;
+
+  explicit Flows(const Body& b)
+      : inv_b(1.0 / b.B),
+        c1(1.0 / b.A - 1.0 / b.B),
+        c3(1.0 / b.C - 1.0 / b.B),
+        mgr(b.mgR()),
+        symmetric(b.A == b.B) {}
+};
+
+// gamma = R^T e_zeta, the third row of R(q).
+inline void vertical(const State& x, double& g1, double& g2, double& g3) {
+  g1 = 2.0 * (x.qx * x.qz - x.qw * x.qy);
+  g2 = 2.0 * (x.qy * x.qz + x.qw * x.qx);
+  g3 = x.qw * x.qw - x.qx * x.qx - x.qy * x.qy + x.qz * x.qz;
+}
+
+// V(s): L += s m g R (gamma x e3) = s m g R (g2, -g1, 0); the attitude is unchanged.
+inline void kick(const Flows& f, State& x, double s) {
+  double g1, g2, g3;
+  vertical(x, g1, g2, g3);
+  const double k = s * f.mgr;
+  x.l1 += k * g2;
+  x.l2 -= k * g1;
+}
+
+// q <- q (x) (c, s u) for a unit axis u = (u1, u2, u3) in body axes.
+inline void rotate_attitude(State& x, double c, double s, double u1, double u2, double u3) {
+  const double bx = s * u1, by = s * u2, bz = s * u3;
+  const double w = x.qw * c - x.qx * bx - x.qy * by - x.qz * bz;
+  const double qx = x.qw * bx + x.qx * c + x.qy * bz - x.qz * by;
+  const double qy = x.qw * by - x.qx * bz + x.qy * c + x.qz * bx;
+  const double qz = x.qw * bz + x.qx * by - x.qy * bx + x.qz * c;
+  x.qw = w, x.qx = qx, x.qy = qy, x.qz = qz;
+}
+
+// T1(s): H = c1 L1^2/2, a rotation by theta = s c1 L1 about body x: R <- R Rx(theta),
+// L <- Rx(-theta) L.
+// One sincos of the half angle serves both: cos t = 1 - 2 sin^2(t/2), sin t = 2 sin cos(t/2).
+inline void rotate_x(const Flows& f, State& x, double s) {
+  const double half = 0.5 * s * f.c1 * x.l1;
+  const double ch = std::cos(half), sh = std::sin(half);
+  const double c = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
+  const double l2 = c * x.l2 + sn * x.l3, l3 = c * x.l3 - sn * x.l2;
+  x.l2 = l2, x.l3 = l3;
+  rotate_attitude(x, ch, sh, 1.0, 0.0, 0.0);
+}
+
+// T_L(s) T3(s): |L|^2/(2B) turns the body about L at |L|/B (L fixed in body axes);
+// c3 L3^2/2 about body z at c3 L3, with L <- Rz(-theta) L. They commute.
+inline void rotate_l_z(const Flows& f, State& x, double s) {
+  const double norm = std::sqrt(x.l1 * x.l1 + x.l2 * x.l2 + x.l3 * x.l3);
+  if (norm > 0.0) {
+    const double half = 0.5 * s * norm * f.inv_b, inv = 1.0 / norm;
+    rotate_attitude(x, std::cos(half), std::sin(half), x.l1 * inv, x.l2 * inv, x.l3 * inv);
+  }
+  const double half = 0.5 * s * f.c3 * x.l3;
+  const double ch = std::cos(half), sh = std::sin(half);
+  const double c = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
+  const double l1 = c * x.l1 + sn * x.l2, l2 = c * x.l2 - sn * x.l1;
+  x.l1 = l1, x.l2 = l2;
+  rotate_attitude(x, ch, sh, 0.0, 0.0, 1.0);
+}
+
+// The Strang step: symmetric, so a symmetric composition raises it to order 4.
+inline void strang(const Flows& f, State& x, double h) {
+  kick(f, x, 0.5 * h);
+  if (!f.symmetric) rotate_x(f, x, 0.5 * h);
+  rotate_l_z(f, x, h);
+  if (!f.symmetric) rotate_x(f, x, 0.5 * h);
+  kick(f, x, 0.5 * h);
+}
+
+// Suzuki's fractal composition: five Strang steps p, p, 1 - 4p, p, p with p = 1/(4 - 4^(1/3)).
+// Measured on the long-run top it gives a tenth of the error of Yoshida's triple jump
+// (three steps 1.35, -1.70, 1.35) at the same number of kicks: its middle step is short.
+constexpr double kP = 0.41449077179437573;
+constexpr double kQ = -0.65796308717750292;  // 1 - 4p
+
+inline void step(const Flows& f, State& x, double h, int order) {
+  if (order == 4) {
+    strang(f, x, kP * h);
+    strang(f, x, kP * h);
+    strang(f, x, kQ * h);
+    strang(f, x, kP * h);
+    strang(f, x, kP * h);
+  } else {
+    strang(f, x, h);
+  }
+  // Rounding only: every flow is an exact rotation of q.
+  const double inv = 1.0 / std::sqrt(x.qw * x.qw + x.qx * x.qx + x.qy * x.qy + x.qz * x.qz);
+  x.qw *= inv, x.qx *= inv, x.qy *= inv, x.qz *= inv;
+}
+
+State to_state(const Body& body, const RigidBodyState& rb) {
+  Eigen::Quaterniond q(rb.attitude);
+  q.normalize();
+  return {q.w(), q.x(), q.y(), q.z(), body.A * rb.omega.x(), body.B * rb.omega.y(),
+          body.C * rb.omega.z()};
+}
+
+RigidBodyState to_rigid_body(const Body& body, const State& x) {
+  RigidBodyState rb;
+  rb.attitude = Eigen::Quaterniond(x.qw, x.qx, x.qy, x.qz).toRotationMatrix();
+  rb.omega = Eigen::Vector3d(x.l1 / body.A, x.l2 / body.B, x.l3 / body.C);
+  return rb;
+}
+
+std::optional<std::pair<const char*, const char*>> first_violation(const SplittingOptions& o) {
+  if (!(std::isfinite(o.step) && o.step > 0.0)) return std::pair{"--step", "must be finite and > 0"};
+  if (o.order != 2 && o.order != 4) return std::pair{"--order", "must be 2 or 4"};
+  if (o.max_steps == 0) return std::pair{"--max-steps", "must be > 0"};
+  return std::nullopt;
+}
+
+void validate_times(const std::vector<double>& times) {
+  double previous = 0.0;
+  for (double t : times) {
+    if (!std::isfinite(t) || t < previous)
+      throw InvalidInput("times", "must be finite, >= 0 and non-decreasing");
+    previous = t;
+  }
+}
+
+// E, L_zeta, L_3 straight from (q, L), for the drift monitor at every grid step.
+struct Integrals {
+  double energy, vertical, axial;
+};
+Integrals integrals(const Body& b, const State& x) {
+  double g1, g2, g3;
+  vertical(x, g1, g2, g3);
+  return {0.5 * (x.l1 * x.l1 / b.A + x.l2 * x.l2 / b.B + x.l3 * x.l3 / b.C) + b.mgR() * g3,
+          x.l1 * g1 + x.l2 * g2 + x.l3 * g3, x.l3};
+}
+
+}  // namespace
+
+bool SplittingOptions::IsValid(std::string* why) const {
+  const auto violation = first_violation(*this);
+  if (violation && why) *why = std::string(violation->first) + ": " + violation->second;
+  return !violation;
+}
+
+void validate(const SplittingOptions& options) {
+  if (const auto violation = first_violation(options))
+    throw InvalidInput(violation->first, violation->second);
+}
+
+std::string SplittingSummary::BriefReport() const {
+  return fmt::format(
+      "splitting: {} steps (+{} partial), {} kicks, t = {:.6g} s, relative drift: energy "
+      "{:.2e}, vertical momentum {:.2e}, axial momentum {:.2e}{}",
+      steps, partial_steps, kicks, final_time, max_relative_energy_drift,
+      max_relative_vertical_momentum_drift, max_relative_axial_momentum_drift,
+      symmetric ? "" : " (not conserved: A != B)");
+}
+
+Trajectory simulate_splitting(const Body& body, const InitialState& initial,
+                              const std::vector<double>& times, const SplittingOptions& options,
+                              SplittingSummary* summary) {
+  validate(body);
+  validate(initial);
+  validate(options);
+  validate_times(times);
+  const double h = options.step;
+  const double horizon = times.empty() ? 0.0 : times.back();
+  if (horizon / h > static_cast<double>(options.max_steps))
+    throw InvalidInput("--step", fmt::format("too small: t = {:.6g} s would take more than "
+                                             "max_steps = {} steps",
+                                             horizon, options.max_steps));
+
+  const Flows flows(body);
+  const RigidBodyState rb0 = initial_rigid_body_state(initial);
+  State x = to_state(body, rb0);
+  const ConservedQuantities initial_q = conserved_quantities(body, rb0);
+  const int strangs = options.order == 4 ? 5 : 1;
+
+  // Drift scales as NonlinearSummary's.
+  double e_scale = 1.0, l_scale = 1.0;
+  Integrals first{};
+  if (summary) {
+    *summary = SplittingSummary{};
+    summary->symmetric = flows.symmetric;
+    const double kinetic = 0.5 * rb0.omega.dot(Eigen::Vector3d(body.A, body.B, body.C).cwiseProduct(rb0.omega));
+    e_scale = kinetic + std::abs(body.mgR());
+    l_scale = std::sqrt(2.0 * std::max({body.A, body.B, body.C}) * e_scale);
+    if (!(e_scale > 0.0)) e_scale = 1.0;
+    if (!(l_scale > 0.0)) l_scale = 1.0;
+    first = integrals(body, x);
+  }
+
+  Trajectory out;
+  out.reserve(times.size());
+  const char* names[] = {"energy", "vertical_momentum", "axial_momentum",
+                         "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
+  for (const char* name : names) {
+    out.extra.emplace_back(name, std::vector<double>{});
+    out.extra.back().second.reserve(times.size());
+  }
+
+  std::size_t n = 0;  // grid index: x is the state at n h
+  for (double t : times) {
+    // Grid points up to t (n h <= t, with exact multiples of h on the grid).
+    const auto target = static_cast<std::size_t>(std::floor(t / h * (1.0 + 4e-16)));
+    for (; n < target; ++n) {
+      step(flows, x, h, options.order);
+      if (summary) {
+        const Integrals q = integrals(body, x);
+        auto& s = *summary;
+        s.max_relative_energy_drift = std::max(s.max_relative_energy_drift, std::abs(q.energy - first.energy) / e_scale);
+        s.max_relative_vertical_momentum_drift = std::max(
+            s.max_relative_vertical_momentum_drift, std::abs(q.vertical - first.vertical) / l_scale);
+        s.max_relative_axial_momentum_drift =
+            std::max(s.max_relative_axial_momentum_drift, std::abs(q.axial - first.axial) / l_scale);
+      }
+    }
+    const double rest = t - static_cast<double>(n) * h;
+    RigidBodyState rb = rb0;
+    if (t > 0.0) {
+      State y = x;
+      if (rest > 1e-15 * std::max(h, t)) {  // one shorter step, on a copy
+        step(flows, y, rest, options.order);
+        if (summary) {
+          ++summary->partial_steps;
+          summary->kicks += 2 * strangs;
+        }
+      }
+      rb = to_rigid_body(body, y);
+    }
+    // k = R e3, k' = R (w x e3) = w2 R e1 - w1 R e2; at t = 0 the exact initial attitude.
+    const AxisAngles a = axis_angles(
+        rb.attitude.col(2), rb.omega.y() * rb.attitude.col(0) - rb.omega.x() * rb.attitude.col(1));
+    const ConservedQuantities q = conserved_quantities(body, rb);
+    out.t.push_back(t);
+    out.theta.push_back(a.theta);
+    out.phi.push_back(a.phi);
+    out.theta_rate.push_back(a.theta_rate);
+    out.phi_rate.push_back(a.phi_rate);
+    const double values[] = {q.energy,
+                             q.vertical_momentum,
+                             q.axial_momentum,
+                             q.energy - initial_q.energy,
+                             q.vertical_momentum - initial_q.vertical_momentum,
+                             q.axial_momentum - initial_q.axial_momentum};
+    for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
+  }
+  if (summary) {
+    summary->steps = n;
+    summary->kicks += 2 * strangs * n;
+    summary->final_time = static_cast<double>(n) * h;
+  }
+  return out;
+}
+
+}  // namespace heavytop

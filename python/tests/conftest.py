@@ -25,6 +25,9 @@ BODIES = {
 }
 
 
+needs_derive = pytest.mark.skipif(not heavytop.HAS_DERIVE, reason="built without HEAVYTOP_BUILD_SYMBOLIC")
+
+
 def cli_binary():
     path = os.environ.get("HEAVYTOP")
     if not path:

@@ -1,12 +1,13 @@
 """Bad input raises heavytop.InvalidInput, a ValueError whose message is the command line's
 "<key>: <rule>" (the CLI prints "heavytop: error: <key>: <rule>" and exits 2)."""
 import math
+import pickle
 
 import numpy as np
 import pytest
 
 import heavytop
-from conftest import BODIES, body_options, motion_options, run_cli
+from conftest import BODIES, body_options, motion_options, needs_derive, run_cli
 
 GOOD = dict(A=1.0, B=1.3, C=2.0, mass=1.0, length=1.0, gravity=1.0)
 
@@ -46,6 +47,7 @@ def test_body_is_immutable():
         body.mass = 2.0
     assert body.mgR == body.mass * body.gravity * body.length
     assert body == heavytop.Body(**body.to_dict()) and hash(body) == hash(heavytop.Body(**body.to_dict()))
+    assert pickle.loads(pickle.dumps(body)) == body
 
 
 @pytest.mark.parametrize("kwargs,cli_args,key", [
@@ -87,6 +89,7 @@ def test_stability_and_compare_refuse_bad_input():
         heavytop.compare(body, spin=1.0, phi_rate0=math.nan)
 
 
+@needs_derive
 @pytest.mark.parametrize("kwargs,cli_args", [
     (dict(order=3), ["--order", "3"]),
     (dict(method="euler"), ["--method", "euler"]),

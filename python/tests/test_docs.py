@@ -1,0 +1,31 @@
+"""The docstrings say units and frames; help(heavytop.simulate) reads like `heavytop simulate --help`."""
+import pydoc
+
+import heavytop
+from conftest import run_cli
+
+
+def test_simulate_help_reads_like_the_clis():
+    text = pydoc.render_doc(heavytop.simulate, renderer=pydoc.plaintext)
+    cli_help = run_cli("simulate", "--help").stdout
+    # Every option of the command, with its unit, under its Python name.
+    for cli_text, python_name in [("rad/s, spin w0 about the body axis", "spin"),
+                                  ("rad, initial theta (tilt towards xi)", "theta0"),
+                                  ("rad, initial phi (tilt about xi)", "phi0"),
+                                  ("s, end of the simulated interval (> 0)", "t_end"),
+                                  ("nonlinear: relative tolerance per step", "rtol")]:
+        assert cli_text in cli_help
+        assert cli_text in text or cli_text.replace(" (> 0)", "") in text, cli_text
+        assert python_name in text
+    for word in ("rad/s", "kg m^2", "t_i = i t_end / (samples - 1)", "float64", "--samples", "lagrange-exact"):
+        assert word in text, word
+
+
+def test_every_function_documents_units():
+    for f in (heavytop.stability, heavytop.simulate, heavytop.compare, heavytop.sweep, heavytop.derive,
+              heavytop.Body):
+        assert "rad" in f.__doc__ or "kg m^2" in f.__doc__ or "omega0" in f.__doc__, f.__name__
+    module = heavytop.__doc__
+    for word in ("SI", "zeta vertical and up", "phi   = -asin(k_eta)", "theta = atan2(k_xi, k_zeta)"):
+        assert word in module, word
+    assert "kg m^2" in heavytop.Body.A.__doc__ and "N m" in heavytop.Body.mgR.__doc__
