@@ -11,6 +11,7 @@
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/linear_motion.hpp"
 #include "heavytop/nonlinear.hpp"
+#include "heavytop/splitting.hpp"
 
 namespace heavytop::cli {
 namespace {
@@ -28,6 +29,11 @@ struct SimulateOptions {
   CLI::Option* method_option = nullptr;
   CLI::Option* rtol_option = nullptr;
   CLI::Option* atol_option = nullptr;
+  std::string integrator = "adaptive";
+  SplittingOptions splitting;
+  CLI::Option* integrator_option = nullptr;
+  CLI::Option* step_option = nullptr;
+  CLI::Option* order_option = nullptr;
 };
 
 std::string to_json(const std::string& model, const Inputs& in, const Trajectory& tr,
@@ -96,7 +102,17 @@ Action add_simulate_command(CLI::App& app) {
                        ->default_str(fmt::format("{}", o->rtol));
   o->atol_option = cmd->add_option("--atol", o->atol, "nonlinear: absolute tolerance per step")
                        ->default_str(fmt::format("{}", o->atol));
-  inputs->allow_section("simulate", {"model", "t_end", "samples", "method", "rtol", "atol"});
+  o->integrator_option =
+      cmd->add_option("--integrator", o->integrator,
+                      "nonlinear: adaptive (Dormand-Prince, error control) | splitting (fixed step, "
+                      "structure-preserving: bounded energy error over long runs)")
+          ->check(CLI::IsMember({"adaptive", "splitting"}))
+          ->default_str("adaptive");
+  o->step_option = cmd->add_option("--step", o->splitting.step, "s, splitting: the fixed step")
+                       ->default_str(fmt::format("{}", o->splitting.step));
+  o->order_option = cmd->add_option("--order", o->splitting.order, "splitting: order 2 (Strang) or 4 (Suzuki)")
+                        ->default_str("2");
+  inputs->allow_section("simulate", {"model", "t_end", "samples", "method", "rtol", "atol", "integrator", "step", "order"});
 
   return [inputs, o] {
     inputs->resolve();
@@ -108,6 +124,11 @@ Action add_simulate_command(CLI::App& app) {
       o->samples = static_cast<long long>(inputs->section_number("simulate", "samples").value_or(static_cast<double>(o->samples)));
     if (!o->rtol_option->count()) o->rtol = inputs->section_number("simulate", "rtol").value_or(o->rtol);
     if (!o->atol_option->count()) o->atol = inputs->section_number("simulate", "atol").value_or(o->atol);
+    if (!o->integrator_option->count())
+      o->integrator = inputs->section_string("simulate", "integrator").value_or(o->integrator);
+    if (!o->step_option->count()) o->splitting.step = inputs->section_number("simulate", "step").value_or(o->splitting.step);
+    if (!o->order_option->count())
+      o->splitting.order = static_cast<int>(inputs->section_number("simulate", "order").value_or(o->splitting.order));
 
     const bool nonlinear = o->model == "nonlinear", exact = o->model == "lagrange-exact";
     const auto kind = linear_model_from_name(o->model);
@@ -120,6 +141,15 @@ Action add_simulate_command(CLI::App& app) {
     if (o->samples < 2 || o->samples > 100'000'000) throw InvalidInput("--samples", "must be an integer in [2, 100000000]");
     if (!kind && o->method_option->count())
       throw InvalidInput("--method", "applies to the linear models only");
+    if (o->integrator != "adaptive" && o->integrator != "splitting")
+      throw InvalidInput("--integrator", "must be adaptive or splitting");
+    const bool splitting = o->integrator == "splitting";
+    for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option})
+      if (given->count() && !nonlinear)
+        throw InvalidInput(given->get_name(), "applies to --model nonlinear only");
+    if (!splitting && (o->step_option->count() || o->order_option->count()))
+      throw InvalidInput(o->step_option->count() ? "--step" : "--order", "applies to --integrator splitting only");
+    if (splitting) validate(o->splitting);
     NonlinearOptions options;
     options.rtol = o->rtol;
     options.atol = o->atol;
@@ -129,11 +159,12 @@ Action add_simulate_command(CLI::App& app) {
     NonlinearSummary summary;
     ProgressBar progress("simulate", o->t_end);
     options.progress = [&](double t) { progress.update(t); };
-    const Trajectory tr = nonlinear ? simulate_nonlinear(inputs->body(), inputs->state(), times, options, &summary)
+    const Trajectory tr = nonlinear && splitting ? simulate_splitting(inputs->body(), inputs->state(), times, o->splitting)
+                          : nonlinear ? simulate_nonlinear(inputs->body(), inputs->state(), times, options, &summary)
                           : exact   ? simulate_lagrange_exact(inputs->body(), inputs->state(), times)
                                     : simulate_linear_in_chunks(*kind, *inputs, times, o->method, progress);
     write_output(inputs->output(), inputs->format() == "json"
-                                       ? to_json(o->model, *inputs, tr, nonlinear ? &summary : nullptr)
+                                       ? to_json(o->model, *inputs, tr, nonlinear && !splitting ? &summary : nullptr)
                                        : trajectory_csv(tr));
   };
 }

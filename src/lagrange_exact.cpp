@@ -533,7 +533,7 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
   top.u_min = u0 + x_lo;
   top.u_max = u0 + x_hi;
   top.u_third = beta != 0.0 ? u0 + (-g.c[2] - beta * (x_lo + x_hi)) / beta
-                            : (g.c[2] < 0.0 ? kInf : -kInf);
+                            : kInf;  // f is a quadratic
   top.through_vertical = one_minus_hi == 0.0 && x_hi != x_lo;
   top.through_downward = one_plus_lo == 0.0 && x_hi != x_lo;
   d.u0 = u0;
@@ -675,9 +675,9 @@ RigidBodyState lagrange_rigid_body_state(const LagrangeTop& top, double t) {
 
 Trajectory simulate_lagrange_exact(const Body& body, const InitialState& initial,
                                    const std::vector<double>& times) {
+  const LagrangeTop top = lagrange_top(body, initial);
   for (double t : times)
     if (!std::isfinite(t)) throw InvalidInput("times", "must be finite");
-  const LagrangeTop top = lagrange_top(body, initial);
   Trajectory out;
   out.reserve(times.size());
   for (double t : times) {

@@ -96,6 +96,9 @@ check "samples >= 2" refused --samples simulate --config ok.toml --samples 1
 check "t-end > 0" refused --t-end simulate --config ok.toml --t-end 0
 check "unknown model" refused --model simulate --config ok.toml --model quadratic
 check "rtol > 0" refused --rtol simulate --config ok.toml --rtol -1
+check "step > 0" refused --step simulate --config ok.toml --integrator splitting --step 0
+check "order 2 or 4" refused --order simulate --config ok.toml --integrator splitting --order 3
+check "integrator for nonlinear only" refused --integrator simulate --config ok.toml --model first-order --integrator splitting
 check "lagrange-exact needs A = B" refused body.B simulate --config ok.toml --model lagrange-exact --B 1.5
 
 # gravity is optional and defaults to 9.81; integer values are numbers too.
@@ -119,6 +122,14 @@ for i, r in enumerate(rows[1:]):
 assert abs(float(rows[1][1]) - 0.01) < 1e-15 and abs(float(rows[1][2])) < 1e-15
 PY
 done
+# The splitting integrator and the exact solution agree on a symmetric top.
+"$H" simulate --config ok.toml --theta0 0.3 --model nonlinear --integrator splitting --order 4 --step 1e-3 --t-end 5 --samples 6 > split.csv
+"$H" simulate --config ok.toml --theta0 0.3 --model lagrange-exact --t-end 5 --samples 6 > exact.csv
+check "splitting agrees with lagrange-exact" python3 -c '
+import csv
+a = list(csv.reader(open("split.csv"))); b = list(csv.reader(open("exact.csv")))
+assert a[0][5:] == ["energy", "vertical_momentum", "axial_momentum", "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"]
+assert max(abs(float(x) - float(y)) for ra, rb in zip(a[1:], b[1:]) for x, y in zip(ra[1:3], rb[1:3])) < 1e-9'
 check "no temporary files left" test -z "$(ls -A | grep tmp)"
 
 finish

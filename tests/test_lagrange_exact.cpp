@@ -302,6 +302,7 @@ TEST_P(NutationBoundsTest, AreRootsOfTheCubicAndAreReached) {
     const double d2 = std::abs(6.0 * beta * u - 2.0 * (alpha + b * b));
     return 1e-13 + std::min(df / d1, std::sqrt(2.0 * df / d2));
   };
+  RecordProperty("root_differences", sci(bounds.u_min - lo) + " " + sci(bounds.u_max - hi));
   EXPECT_NEAR(bounds.u_min, lo, tolerance(lo)) << c.name;
   EXPECT_NEAR(bounds.u_max, hi, tolerance(hi)) << c.name;
   EXPECT_NEAR(top.u_third, far, tolerance(far) * std::max(1.0, std::abs(far))) << c.name;
@@ -330,8 +331,7 @@ TEST_P(NutationBoundsTest, AreRootsOfTheCubicAndAreReached) {
     t_prev = t;
     du_prev = m.k_rate.z();
   }
-  RecordProperty("u_min", sci(bounds.u_min));
-  RecordProperty("u_max", sci(bounds.u_max));
+  RecordProperty("touch_differences", sci(u_lo_seen - bounds.u_min) + " " + sci(u_hi_seen - bounds.u_max));
   EXPECT_LT(outside, 1e-14);
   EXPECT_NEAR(u_lo_seen, bounds.u_min, 1e-13);
   EXPECT_NEAR(u_hi_seen, bounds.u_max, 1e-13);
@@ -364,6 +364,7 @@ TEST(LagrangeExact, PeriodIncrementsMatchQuadrature) {
                      return s;
                    }()});
   std::string checked;
+  double worst = 0.0;
   for (const Case& c : cases) {
     LagrangeExactOptions direct;
     direct.fourier_series = false;
@@ -400,10 +401,13 @@ TEST(LagrangeExact, PeriodIncrementsMatchQuadrature) {
       }
     const double scale = 1.0 + std::abs(dphi);
     checked += c.name + " ";
+    worst = std::max({worst, std::abs(top.precession_per_period - dphi) / scale,
+                      std::abs(top.spin_per_period - dpsi) / (1.0 + std::abs(dpsi))});
     EXPECT_NEAR(top.precession_per_period, dphi, 1e-12 * scale) << c.name;
     EXPECT_NEAR(top.spin_per_period, dpsi, 1e-12 * (1.0 + std::abs(dpsi))) << c.name;
   }
   RecordProperty("checked", checked);
+  RecordProperty("largest_relative_difference", sci(worst));
 }
 
 // ---- Periodicity: the cost of a sample does not depend on t ------------------------------
@@ -411,6 +415,7 @@ TEST(LagrangeExact, PeriodIncrementsMatchQuadrature) {
 // k(t + n T) = R_zeta(n dphi) k(t) and R(t + n T) = R_zeta(n dphi) R(t) R_z(n dpsi): the sample
 // at t = 1e6 s equals the sample at 1e6 - n T rotated by the whole-period increments.
 TEST(LagrangeExact, FarSampleEqualsReducedSampleWithWholePeriodIncrements) {
+  double worst = 0.0;
   for (const Case& c : degenerate_cases()) {
     const LagrangeTop top = lagrange_top(c.body, c.state);
     if (!std::isfinite(top.nutation_period)) continue;
@@ -426,6 +431,8 @@ TEST(LagrangeExact, FarSampleEqualsReducedSampleWithWholePeriodIncrements) {
     const RigidBodyState far_body = lagrange_rigid_body_state(top, t);
     const RigidBodyState near_body = lagrange_rigid_body_state(top, t_reduced);
     // The rounding of t itself (1.2e-10 s at 1e6 s) and of n dphi bound the agreement.
+    worst = std::max({worst, (far.k - rz(dphi) * near.k).norm(),
+                      (far_body.attitude - rz(dphi) * near_body.attitude * rz(dpsi)).norm()});
     EXPECT_LT((far.k - rz(dphi) * near.k).norm(), 1e-8) << c.name;
     EXPECT_LT((far_body.attitude - rz(dphi) * near_body.attitude * rz(dpsi)).norm(), 1e-8) << c.name;
     EXPECT_LT((far_body.omega - rz(dpsi).transpose() * near_body.omega).norm(), 1e-8) << c.name;
@@ -440,6 +447,7 @@ TEST(LagrangeExact, FarSampleEqualsReducedSampleWithWholePeriodIncrements) {
       EXPECT_NEAR(q.axial_momentum, q0.axial_momentum, 1e-12 * scale) << c.name;
     }
   }
+  RecordProperty("largest_difference", sci(worst));
 }
 
 // ---- The state at t = 0 and the rigid-body motion ------------------------------------------

@@ -49,8 +49,8 @@ struct LagrangeTop {
 
   double u_min = 1.0;  ///< cos of the largest tilt: the lower motion root of f (in [-1, 1])
   double u_max = 1.0;  ///< cos of the smallest tilt: the upper motion root of f (in [-1, 1])
-  /// The third root of f (dimensionless; > 1 for m g R > 0, < -1 for m g R < 0; +-inf or NaN
-  /// when m g R = 0, where f is a quadratic).
+  /// The third root of f (dimensionless; >= 1 for m g R > 0, <= -1 for m g R < 0; +inf when
+  /// m g R = 0, where f is a quadratic).
   double u_third = 0.0;
 
   bool constant_tilt = false;      ///< u_min == u_max: sleeping top, steady precession, rest
@@ -116,7 +116,7 @@ struct LagrangeTop {
 /// How lagrange_top() prepares the evaluation.
 struct LagrangeExactOptions {
   /// Sum the periodic parts of the azimuth and spin angle as Fourier series (precomputed from
-  /// the elliptic integrals, about 4x faster per sample) wherever at most 64 terms reach
+  /// the elliptic integrals; a sample then costs half as much) wherever at most 60 terms reach
   /// rounding level and agree with the integrals at setup; false: elliptic integrals always.
   bool fourier_series = true;
 };
