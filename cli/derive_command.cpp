@@ -261,18 +261,20 @@ std::string rotations_text(const Rotations& r) {
 std::string rotations_latex(const Rotations& r) {
   std::ostringstream out;
   out << "% heavytop derive --rotations --order " << r.order << "\n";
-  out << "\\begin{equation}\n";
   const auto list = named(r);
   const char* tex_names[] = {"A_1", "A_2", "A_3", "A_1 A_2", "A_2 A_1", "A_1 A_2 - A_2 A_1"};
-  for (size_t k = 0; k < list.size(); ++k)
-    out << tex_names[k] << " = " << matrix_tex(*list[k].value)
-        << (k + 1 < list.size() ? ", \\quad\n" : "\n");
-  out << "\\end{equation}\n";
+  // Three lines that fit a page: the rotations, their products, the commutator.
+  for (auto [first, last] : {std::pair<size_t, size_t>{0, 3}, {3, 5}, {5, 6}}) {
+    out << "\\begin{equation}\n";
+    for (size_t k = first; k < last; ++k)
+      out << tex_names[k] << " = " << matrix_tex(*list[k].value) << (k + 1 < last ? ", \\quad\n" : "\n");
+    out << "\\end{equation}\n";
+  }
   for (Sequence s : kSequences) {
     const AngularVelocities w = angular_velocities(s, r.order);
     out << "% " << sequence_title(s) << ": the body's angular velocity on i, j, k (2) and on l, m, n (3)\n";
-    out << "\\begin{equation}\n\\omega = " << matrix_tex(w.body_axes, tex_expanded)
-        << ", \\quad \\omega = " << matrix_tex(w.body_fixed, tex_expanded) << "\n\\end{equation}\n";
+    out << "\\begin{equation}\n\\omega_{xyz} = " << matrix_tex(w.body_axes, tex_expanded)
+        << ", \\quad \\omega_{\\xi\\eta\\zeta} = " << matrix_tex(w.body_fixed, tex_expanded) << "\n\\end{equation}\n";
   }
   return out.str();
 }

@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libginac-dev libcln-dev             # computer algebra for the symbolic target
+  texlive-latex-base                  # pdflatex: the test that derive's LaTeX compiles
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
 )
