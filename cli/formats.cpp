@@ -52,19 +52,17 @@ std::string stability_json(const Body& body, double spin, const std::vector<Mode
   return out.dump(2) + "\n";
 }
 
-namespace {
-
 std::string intervals_text(const std::vector<SpinInterval>& intervals) {
   if (intervals.empty()) return "none";
   std::string text;
   for (const auto& i : intervals) {
     if (!text.empty()) text += ", ";
-    text += i.hi ? fmt::format("[{:.6g}, {:.6g}]", i.lo, *i.hi) : fmt::format("above {:.6g}", i.lo);
+    text += i.hi              ? fmt::format("[{:.6g}, {:.6g}]", i.lo, *i.hi)
+            : i.lo == 0.0     ? std::string("every spin")
+                              : fmt::format("above {:.6g}", i.lo);
   }
   return text;
 }
-
-}  // namespace
 
 std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports) {
   std::ostringstream out;

@@ -20,6 +20,8 @@ struct ModelReport {
 
 /// Every linear model of `body` at spin w0 (rad/s).
 std::vector<ModelReport> analyse(const Body& body, double spin);
+/// Stable spins for people: "[1.2, 3.4], above 5.6", "every spin" or "none" (rad/s).
+std::string intervals_text(const std::vector<SpinInterval>& intervals);
 std::string stability_json(const Body& body, double spin, const std::vector<ModelReport>& reports);
 std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports);
 

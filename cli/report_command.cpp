@@ -89,14 +89,10 @@ std::string errata_html(const Body& body, const InitialState& state, const std::
 std::string table_html(const std::vector<ModelReport>& reports) {
   std::string rows;
   for (const auto& r : reports) {
-    std::string intervals;
-    for (const auto& iv : r.intervals)
-      intervals += (intervals.empty() ? "" : ", ") +
-                   (iv.hi ? fmt::format("[{:.6g}, {:.6g}]", iv.lo, *iv.hi) : fmt::format("&ge; {:.6g}", iv.lo));
     rows += fmt::format("<tr><td>{}</td><td class='{}'>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", name(r.kind),
                         r.verdict.stable ? "ok" : "bad", r.verdict.stable ? "stable" : "unstable",
                         r.critical ? fmt::format("{:.6g}", *r.critical) : "none",
-                        intervals.empty() ? "none" : intervals, html_escape(r.verdict.reason));
+                        intervals_text(r.intervals), html_escape(r.verdict.reason));
   }
   return "<table><tr><th>model</th><th>verdict</th><th>critical spin (rad/s)</th><th>stable spins (rad/s)</th>"
          "<th>why</th></tr>\n" + rows + "</table>";
