@@ -9,6 +9,8 @@
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 
+#include "rigid_body_common.hpp"
+
 namespace heavytop {
 
 namespace {
@@ -681,12 +683,7 @@ Trajectory simulate_lagrange_exact(const Body& body, const InitialState& initial
   Trajectory out;
   out.reserve(times.size());
   for (double t : times) {
-    const AxisAngles a = lagrange_axis_angles(top, t);
-    out.t.push_back(t);
-    out.theta.push_back(a.theta);
-    out.phi.push_back(a.phi);
-    out.theta_rate.push_back(a.theta_rate);
-    out.phi_rate.push_back(a.phi_rate);
+    internal::push_angles(out, t, lagrange_axis_angles(top, t));
   }
   return out;
 }

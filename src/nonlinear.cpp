@@ -14,7 +14,11 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
+#include "rigid_body_common.hpp"
+
 namespace heavytop {
+
+using namespace internal;
 
 namespace {
 
@@ -141,7 +145,7 @@ double tilt_cos_rate(const State& x) {
 
 // ---- Options --------------------------------------------------------------------------------
 
-std::optional<std::pair<const char*, const char*>> first_violation(const NonlinearOptions& o) {
+Violation first_violation(const NonlinearOptions& o) {
   if (!(std::isfinite(o.rtol) && o.rtol >= 1e-15 && o.rtol <= 1.0))
     return std::pair{"--rtol", "must be a finite number in [1e-15, 1]"};
   if (!(std::isfinite(o.atol) && o.atol > 0.0))
@@ -150,24 +154,7 @@ std::optional<std::pair<const char*, const char*>> first_violation(const Nonline
   return std::nullopt;
 }
 
-// ---- Drift monitor (only when a summary is asked for) ----------------------------------------
-
-struct Scales {
-  double energy = 1.0;    // J
-  double momentum = 1.0;  // kg m^2/s
-};
-
-Scales scales_of(const Body& body, const RigidBodyState& x0) {
-  const Eigen::Vector3d inertia(body.A, body.B, body.C);
-  const double kinetic = 0.5 * x0.omega.dot(inertia.cwiseProduct(x0.omega));
-  Scales s;
-  s.energy = kinetic + std::abs(body.mgR());
-  s.momentum = std::sqrt(2.0 * inertia.maxCoeff() * s.energy);
-  // At rest without torque nothing moves: any positive scale reports the zero drift.
-  if (!(s.energy > 0.0)) s.energy = 1.0;
-  if (!(s.momentum > 0.0)) s.momentum = 1.0;
-  return s;
-}
+// ---- Drift monitor (only when a summary is asked for; scales_of() and note_drift() shared) ----
 
 // E, L_zeta, C w3 straight from the integration state (no matrices; used at every step).
 ConservedQuantities conserved_of_state(const Body& body, const State& x, bool symmetric) {
@@ -308,16 +295,7 @@ class Integrator {
   void monitor() {
     ++summary_->steps;
     summary_->final_time = t_;
-    const ConservedQuantities q = conserved_of_state(body_, x_, Symmetric);
-    auto& s = *summary_;
-    s.max_relative_energy_drift =
-        std::max(s.max_relative_energy_drift, std::abs(q.energy - initial_.energy) / scales_.energy);
-    s.max_relative_vertical_momentum_drift =
-        std::max(s.max_relative_vertical_momentum_drift,
-                 std::abs(q.vertical_momentum - initial_.vertical_momentum) / scales_.momentum);
-    s.max_relative_axial_momentum_drift =
-        std::max(s.max_relative_axial_momentum_drift,
-                 std::abs(q.axial_momentum - initial_.axial_momentum) / scales_.momentum);
+    note_drift(*summary_, conserved_of_state(body_, x_, Symmetric), initial_, scales_);
   }
 
   static constexpr int kMaxConsecutiveRejections = 100;
@@ -334,15 +312,6 @@ class Integrator {
   double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
 };
 
-void validate_times(const std::vector<double>& times) {
-  double previous = 0.0;
-  for (double t : times) {
-    if (!std::isfinite(t) || t < previous)
-      throw InvalidInput("times", "must be finite, >= 0 and non-decreasing");
-    previous = t;
-  }
-}
-
 template <bool Symmetric>
 Trajectory simulate(const Body& body, const RigidBodyState& rb0, const std::vector<double>& times,
                     const NonlinearOptions& options, NonlinearSummary* summary) {
@@ -353,17 +322,11 @@ Trajectory simulate(const Body& body, const RigidBodyState& rb0, const std::vect
 
   Trajectory out;
   out.reserve(times.size());
-  const char* names[] = {"energy", "vertical_momentum", "axial_momentum",
-                         "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
-  for (const char* name : names) {
-    out.extra.emplace_back(name, std::vector<double>{});
-    out.extra.back().second.reserve(times.size());
-  }
+  add_conserved_columns(out, times.size());
 
   // At t = 0 the angles come from the initial attitude itself (SPEC section 2), not from a
   // round trip through the quaternion; k' = R (w x e3) as in angles_of().
-  const AxisAngles a0 = axis_angles(
-      rb0.attitude.col(2), rb0.omega.y() * rb0.attitude.col(0) - rb0.omega.x() * rb0.attitude.col(1));
+  const AxisAngles a0 = axis_angles_of(rb0);
   State x;
   for (double t : times) {
     ConservedQuantities q = initial;
@@ -374,18 +337,8 @@ Trajectory simulate(const Body& body, const RigidBodyState& rb0, const std::vect
       q = conserved_quantities(body, to_rigid_body(x));
       a = angles_of(x);
     }
-    out.t.push_back(t);
-    out.theta.push_back(a.theta);
-    out.phi.push_back(a.phi);
-    out.theta_rate.push_back(a.theta_rate);
-    out.phi_rate.push_back(a.phi_rate);
-    const double values[] = {q.energy,
-                             q.vertical_momentum,
-                             q.axial_momentum,
-                             q.energy - initial.energy,
-                             q.vertical_momentum - initial.vertical_momentum,
-                             q.axial_momentum - initial.axial_momentum};
-    for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
+    push_angles(out, t, a);
+    push_conserved(out, q, initial);
     if (options.progress) options.progress(t);
   }
   return out;
@@ -454,23 +407,14 @@ TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double
 // ---- Public API -------------------------------------------------------------------------------
 
 bool NonlinearOptions::IsValid(std::string* why) const {
-  const auto violation = first_violation(*this);
-  if (violation && why) *why = std::string(violation->first) + ": " + violation->second;
-  return !violation;
+  return is_valid(first_violation(*this), why);
 }
 
-void validate(const NonlinearOptions& options) {
-  if (const auto violation = first_violation(options))
-    throw InvalidInput(violation->first, violation->second);
-}
+void validate(const NonlinearOptions& options) { throw_if_invalid(first_violation(options)); }
 
 std::string NonlinearSummary::BriefReport() const {
-  return fmt::format(
-      "nonlinear: {} steps ({} rejected), {} evaluations, t = {:.6g} s, relative drift: "
-      "energy {:.2e}, vertical momentum {:.2e}, axial momentum {:.2e}{}",
-      steps, rejected_steps, rhs_evaluations, final_time, max_relative_energy_drift,
-      max_relative_vertical_momentum_drift, max_relative_axial_momentum_drift,
-      symmetric ? "" : " (not conserved: A != B)");
+  return fmt::format("nonlinear: {} steps ({} rejected), {} evaluations, t = {:.6g} s, {}", steps,
+                     rejected_steps, rhs_evaluations, final_time, drift_report(*this));
 }
 
 ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState& x) {

@@ -10,8 +10,11 @@
 
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
+#include "rigid_body_common.hpp"
 
 namespace heavytop {
+
+using namespace internal;
 
 namespace {
 
@@ -63,16 +66,23 @@ inline void rotate_attitude(State& x, double c, double s, double u1, double u2, 
   x.qw = w, x.qx = qx, x.qy = qy, x.qz = qz;
 }
 
-// T1(s): H = c1 L1^2/2, a rotation by theta = s c1 L1 about body x: R <- R Rx(theta),
-// L <- Rx(-theta) L.
+// A rotation by theta = 2 half about the body axis e_k = (u1, u2, u3): R <- R Rk(theta),
+// L <- Rk(-theta) L, where (la, lb) are the components of L that turn (the two after k, in
+// cyclic order).
 // One sincos of the half angle serves both: cos t = 1 - 2 sin^2(t/2), sin t = 2 sin cos(t/2).
-inline void rotate_x(const Flows& f, State& x, double s) {
-  const double half = 0.5 * s * f.c1 * x.l1;
+inline void rotate_body_axis(State& x, double half, double& la, double& lb, double u1, double u2,
+                             double u3) {
   const double ch = std::cos(half), sh = std::sin(half);
   const double c = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
-  const double l2 = c * x.l2 + sn * x.l3, l3 = c * x.l3 - sn * x.l2;
-  x.l2 = l2, x.l3 = l3;
-  rotate_attitude(x, ch, sh, 1.0, 0.0, 0.0);
+  const double a = c * la + sn * lb, b = c * lb - sn * la;
+  la = a, lb = b;
+  rotate_attitude(x, ch, sh, u1, u2, u3);
+}
+
+// T1(s): H = c1 L1^2/2, a rotation by theta = s c1 L1 about body x: R <- R Rx(theta),
+// L <- Rx(-theta) L.
+inline void rotate_x(const Flows& f, State& x, double s) {
+  rotate_body_axis(x, 0.5 * s * f.c1 * x.l1, x.l2, x.l3, 1.0, 0.0, 0.0);
 }
 
 // T_L(s) T3(s): |L|^2/(2B) turns the body about L at |L|/B (L fixed in body axes);
@@ -83,12 +93,7 @@ inline void rotate_l_z(const Flows& f, State& x, double s) {
     const double half = 0.5 * s * norm * f.inv_b, inv = 1.0 / norm;
     rotate_attitude(x, std::cos(half), std::sin(half), x.l1 * inv, x.l2 * inv, x.l3 * inv);
   }
-  const double half = 0.5 * s * f.c3 * x.l3;
-  const double ch = std::cos(half), sh = std::sin(half);
-  const double c = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
-  const double l1 = c * x.l1 + sn * x.l2, l2 = c * x.l2 - sn * x.l1;
-  x.l1 = l1, x.l2 = l2;
-  rotate_attitude(x, ch, sh, 0.0, 0.0, 1.0);
+  rotate_body_axis(x, 0.5 * s * f.c3 * x.l3, x.l1, x.l2, 0.0, 0.0, 1.0);
 }
 
 // The Strang step: symmetric, so a symmetric composition raises it to order 4.
@@ -135,27 +140,15 @@ RigidBodyState to_rigid_body(const Body& body, const State& x) {
   return rb;
 }
 
-std::optional<std::pair<const char*, const char*>> first_violation(const SplittingOptions& o) {
+Violation first_violation(const SplittingOptions& o) {
   if (!(std::isfinite(o.step) && o.step > 0.0)) return std::pair{"--step", "must be finite and > 0"};
   if (o.order != 2 && o.order != 4) return std::pair{"--order", "must be 2 or 4"};
   if (o.max_steps == 0) return std::pair{"--max-steps", "must be > 0"};
   return std::nullopt;
 }
 
-void validate_times(const std::vector<double>& times) {
-  double previous = 0.0;
-  for (double t : times) {
-    if (!std::isfinite(t) || t < previous)
-      throw InvalidInput("times", "must be finite, >= 0 and non-decreasing");
-    previous = t;
-  }
-}
-
 // E, L_zeta, L_3 straight from (q, L), for the drift monitor at every grid step.
-struct Integrals {
-  double energy, vertical, axial;
-};
-Integrals integrals(const Body& b, const State& x) {
+ConservedQuantities integrals(const Body& b, const State& x) {
   double g1, g2, g3;
   vertical(x, g1, g2, g3);
   return {0.5 * (x.l1 * x.l1 / b.A + x.l2 * x.l2 / b.B + x.l3 * x.l3 / b.C) + b.mgR() * g3,
@@ -165,23 +158,14 @@ Integrals integrals(const Body& b, const State& x) {
 }  // namespace
 
 bool SplittingOptions::IsValid(std::string* why) const {
-  const auto violation = first_violation(*this);
-  if (violation && why) *why = std::string(violation->first) + ": " + violation->second;
-  return !violation;
+  return is_valid(first_violation(*this), why);
 }
 
-void validate(const SplittingOptions& options) {
-  if (const auto violation = first_violation(options))
-    throw InvalidInput(violation->first, violation->second);
-}
+void validate(const SplittingOptions& options) { throw_if_invalid(first_violation(options)); }
 
 std::string SplittingSummary::BriefReport() const {
-  return fmt::format(
-      "splitting: {} steps (+{} partial), {} kicks, t = {:.6g} s, relative drift: energy "
-      "{:.2e}, vertical momentum {:.2e}, axial momentum {:.2e}{}",
-      steps, partial_steps, kicks, final_time, max_relative_energy_drift,
-      max_relative_vertical_momentum_drift, max_relative_axial_momentum_drift,
-      symmetric ? "" : " (not conserved: A != B)");
+  return fmt::format("splitting: {} steps (+{} partial), {} kicks, t = {:.6g} s, {}", steps,
+                     partial_steps, kicks, final_time, drift_report(*this));
 }
 
 Trajectory simulate_splitting(const Body& body, const InitialState& initial,
@@ -205,27 +189,18 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
   const int strangs = options.order == 4 ? 5 : 1;
 
   // Drift scales as NonlinearSummary's.
-  double e_scale = 1.0, l_scale = 1.0;
-  Integrals first{};
+  Scales scales;
+  ConservedQuantities first;
   if (summary) {
     *summary = SplittingSummary{};
     summary->symmetric = flows.symmetric;
-    const double kinetic = 0.5 * rb0.omega.dot(Eigen::Vector3d(body.A, body.B, body.C).cwiseProduct(rb0.omega));
-    e_scale = kinetic + std::abs(body.mgR());
-    l_scale = std::sqrt(2.0 * std::max({body.A, body.B, body.C}) * e_scale);
-    if (!(e_scale > 0.0)) e_scale = 1.0;
-    if (!(l_scale > 0.0)) l_scale = 1.0;
+    scales = scales_of(body, rb0);
     first = integrals(body, x);
   }
 
   Trajectory out;
   out.reserve(times.size());
-  const char* names[] = {"energy", "vertical_momentum", "axial_momentum",
-                         "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
-  for (const char* name : names) {
-    out.extra.emplace_back(name, std::vector<double>{});
-    out.extra.back().second.reserve(times.size());
-  }
+  add_conserved_columns(out, times.size());
 
   std::size_t n = 0;  // grid index: x is the state at n h
   for (double t : times) {
@@ -233,15 +208,7 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
     const auto target = static_cast<std::size_t>(std::floor(t / h * (1.0 + 4e-16)));
     for (; n < target; ++n) {
       step(flows, x, h, options.order);
-      if (summary) {
-        const Integrals q = integrals(body, x);
-        auto& s = *summary;
-        s.max_relative_energy_drift = std::max(s.max_relative_energy_drift, std::abs(q.energy - first.energy) / e_scale);
-        s.max_relative_vertical_momentum_drift = std::max(
-            s.max_relative_vertical_momentum_drift, std::abs(q.vertical - first.vertical) / l_scale);
-        s.max_relative_axial_momentum_drift =
-            std::max(s.max_relative_axial_momentum_drift, std::abs(q.axial - first.axial) / l_scale);
-      }
+      if (summary) note_drift(*summary, integrals(body, x), first, scales);
     }
     const double rest = t - static_cast<double>(n) * h;
     RigidBodyState rb = rb0;
@@ -256,22 +223,9 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
       }
       rb = to_rigid_body(body, y);
     }
-    // k = R e3, k' = R (w x e3) = w2 R e1 - w1 R e2; at t = 0 the exact initial attitude.
-    const AxisAngles a = axis_angles(
-        rb.attitude.col(2), rb.omega.y() * rb.attitude.col(0) - rb.omega.x() * rb.attitude.col(1));
-    const ConservedQuantities q = conserved_quantities(body, rb);
-    out.t.push_back(t);
-    out.theta.push_back(a.theta);
-    out.phi.push_back(a.phi);
-    out.theta_rate.push_back(a.theta_rate);
-    out.phi_rate.push_back(a.phi_rate);
-    const double values[] = {q.energy,
-                             q.vertical_momentum,
-                             q.axial_momentum,
-                             q.energy - initial_q.energy,
-                             q.vertical_momentum - initial_q.vertical_momentum,
-                             q.axial_momentum - initial_q.axial_momentum};
-    for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
+    // At t = 0 the exact initial attitude.
+    push_angles(out, t, axis_angles_of(rb));
+    push_conserved(out, conserved_quantities(body, rb), initial_q);
   }
   if (summary) {
     summary->steps = n;

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,48 +20,21 @@
 #include <Eigen/Geometry>
 
 #include "heavytop/nonlinear.hpp"
+#include "test_support.hpp"
 
 namespace heavytop {
 namespace {
 
+using test_support::angle_between;
+using test_support::axis_of;
+using test_support::make_state;
+using test_support::sci;
+
 constexpr double kPi = 3.141592653589793;
 
-// A symmetric body with mass 1, gravity 1 and length m g R.
+// A symmetric body with mass 1, gravity 1 and length m g R (B = A unless given).
 Body make_body(double A, double C, double mgR, double B = -1.0) {
-  Body b;
-  b.A = A;
-  b.B = B > 0.0 ? B : A;
-  b.C = C;
-  b.mass = 1.0;
-  b.gravity = 1.0;
-  b.length = mgR;
-  return b;
-}
-
-InitialState make_state(double spin, double theta0, double phi0 = 0.0, double theta_rate0 = 0.0,
-                        double phi_rate0 = 0.0) {
-  InitialState s;
-  s.spin = spin;
-  s.theta0 = theta0;
-  s.phi0 = phi0;
-  s.theta_rate0 = theta_rate0;
-  s.phi_rate0 = phi_rate0;
-  return s;
-}
-
-std::string sci(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
-
-Eigen::Vector3d axis_of(double theta, double phi) {
-  return {std::sin(theta) * std::cos(phi), -std::sin(phi), std::cos(theta) * std::cos(phi)};
-}
-
-// rad, the angle between two unit vectors (accurate for small angles too).
-double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
+  return test_support::make_body(A, B > 0.0 ? B : A, C, mgR);
 }
 
 struct Case {

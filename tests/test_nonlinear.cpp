@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,51 +18,21 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "heavytop/frames.hpp"
+#include "test_support.hpp"
 
 namespace heavytop {
 namespace {
 
-// A body with mass 1, gravity 1 and length m g R, so that m g R is given directly.
-Body make_body(double A, double B, double C, double mgR) {
-  Body b;
-  b.A = A;
-  b.B = B;
-  b.C = C;
-  b.mass = 1.0;
-  b.gravity = 1.0;
-  b.length = mgR;
-  return b;
-}
-
-InitialState make_state(double spin, double theta0, double phi0 = 0.0, double theta_rate0 = 0.0,
-                        double phi_rate0 = 0.0) {
-  InitialState s;
-  s.spin = spin;
-  s.theta0 = theta0;
-  s.phi0 = phi0;
-  s.theta_rate0 = theta_rate0;
-  s.phi_rate0 = phi_rate0;
-  return s;
-}
-
-const std::vector<double>& column(const Trajectory& tr, const std::string& name) {
-  for (const auto& [key, values] : tr.extra)
-    if (key == name) return values;
-  throw std::out_of_range("no column " + name);
-}
+using test_support::axis_of;
+using test_support::column;
+using test_support::make_body;
+using test_support::make_state;
+using test_support::sci;
 
 // The tilt acos(k_zeta) from SPEC's angles: k_zeta = cos(theta) cos(phi).
 double tilt_from_angles(double theta, double phi) {
-  const Eigen::Vector3d k(std::sin(theta) * std::cos(phi), -std::sin(phi),
-                          std::cos(theta) * std::cos(phi));
+  const Eigen::Vector3d k = axis_of(theta, phi);
   return std::atan2(std::hypot(k.x(), k.y()), k.z());
-}
-
-// A number for the test report (RecordProperty), in scientific notation.
-std::string sci(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
 }
 
 double max_abs_difference(const std::vector<double>& a, const std::vector<double>& b) {

@@ -9,60 +9,28 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/nonlinear.hpp"
+#include "test_support.hpp"
 
 namespace heavytop {
 namespace {
 
-Body make_body(double A, double B, double C, double mgR) {
-  Body b;
-  b.A = A;
-  b.B = B;
-  b.C = C;
-  b.mass = 1.0;
-  b.gravity = 1.0;
-  b.length = mgR;
-  return b;
-}
-
-InitialState make_state(double spin, double theta0, double phi0 = 0.0, double theta_rate0 = 0.0,
-                        double phi_rate0 = 0.0) {
-  InitialState s;
-  s.spin = spin;
-  s.theta0 = theta0;
-  s.phi0 = phi0;
-  s.theta_rate0 = theta_rate0;
-  s.phi_rate0 = phi_rate0;
-  return s;
-}
-
-std::string sci(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
-
-const std::vector<double>& column(const Trajectory& tr, const std::string& name) {
-  for (const auto& [key, values] : tr.extra)
-    if (key == name) return values;
-  throw std::out_of_range("no column " + name);
-}
-
-Eigen::Vector3d axis_of(double theta, double phi) {
-  return {std::sin(theta) * std::cos(phi), -std::sin(phi), std::cos(theta) * std::cos(phi)};
-}
+using test_support::angle_between;
+using test_support::axis_of;
+using test_support::column;
+using test_support::make_body;
+using test_support::make_state;
+using test_support::sci;
 
 double max_axis_error(const Trajectory& a, const Trajectory& b) {
   double e = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const Eigen::Vector3d ka = axis_of(a.theta[i], a.phi[i]), kb = axis_of(b.theta[i], b.phi[i]);
-    e = std::max(e, std::atan2(ka.cross(kb).norm(), ka.dot(kb)));
+    e = std::max(e, angle_between(ka, kb));
   }
   return e;
 }

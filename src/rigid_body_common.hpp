@@ -1,0 +1,132 @@
+#pragma once
+// Private to the library: what the two integrators of the nonlinear model (nonlinear.cpp,
+// adaptive; splitting.cpp, fixed-step) share: option checking, the sample times, the drift
+// monitor's scales and update, the report's drift part, and the output columns (the same
+// columns for both, see simulate_splitting). lagrange_exact.cpp uses push_angles() alone.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <fmt/format.h>
+
+#include "heavytop/body.hpp"
+#include "heavytop/frames.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop::internal {
+
+// ---- Options ----------------------------------------------------------------------------------
+
+// The first setting out of range, as (key, rule); none if all are in range.
+using Violation = std::optional<std::pair<const char*, const char*>>;
+
+// Options::IsValid from the options' first violation.
+inline bool is_valid(const Violation& violation, std::string* why) {
+  if (violation && why) *why = std::string(violation->first) + ": " + violation->second;
+  return !violation;
+}
+
+// validate(options) from the options' first violation.
+inline void throw_if_invalid(const Violation& violation) {
+  if (violation) throw InvalidInput(violation->first, violation->second);
+}
+
+inline void validate_times(const std::vector<double>& times) {
+  double previous = 0.0;
+  for (double t : times) {
+    if (!std::isfinite(t) || t < previous)
+      throw InvalidInput("times", "must be finite, >= 0 and non-decreasing");
+    previous = t;
+  }
+}
+
+// ---- Drift monitor (only when a summary is asked for) ----------------------------------------
+
+struct Scales {
+  double energy = 1.0;    // J
+  double momentum = 1.0;  // kg m^2/s
+};
+
+inline Scales scales_of(const Body& body, const RigidBodyState& x0) {
+  const Eigen::Vector3d inertia(body.A, body.B, body.C);
+  const double kinetic = 0.5 * x0.omega.dot(inertia.cwiseProduct(x0.omega));
+  Scales s;
+  s.energy = kinetic + std::abs(body.mgR());
+  s.momentum = std::sqrt(2.0 * inertia.maxCoeff() * s.energy);
+  // At rest without torque nothing moves: any positive scale reports the zero drift.
+  if (!(s.energy > 0.0)) s.energy = 1.0;
+  if (!(s.momentum > 0.0)) s.momentum = 1.0;
+  return s;
+}
+
+// Raises the summary's max_relative_*_drift to those of q against `initial`
+// (NonlinearSummary and SplittingSummary name them alike).
+template <class Summary>
+inline void note_drift(Summary& s, const ConservedQuantities& q, const ConservedQuantities& initial,
+                       const Scales& scales) {
+  s.max_relative_energy_drift =
+      std::max(s.max_relative_energy_drift, std::abs(q.energy - initial.energy) / scales.energy);
+  s.max_relative_vertical_momentum_drift =
+      std::max(s.max_relative_vertical_momentum_drift,
+               std::abs(q.vertical_momentum - initial.vertical_momentum) / scales.momentum);
+  s.max_relative_axial_momentum_drift =
+      std::max(s.max_relative_axial_momentum_drift,
+               std::abs(q.axial_momentum - initial.axial_momentum) / scales.momentum);
+}
+
+// The end of BriefReport, from "relative drift:" on.
+template <class Summary>
+std::string drift_report(const Summary& s) {
+  return fmt::format(
+      "relative drift: energy {:.2e}, vertical momentum {:.2e}, axial momentum {:.2e}{}",
+      s.max_relative_energy_drift, s.max_relative_vertical_momentum_drift,
+      s.max_relative_axial_momentum_drift, s.symmetric ? "" : " (not conserved: A != B)");
+}
+
+// ---- Output -----------------------------------------------------------------------------------
+
+// SPEC section 2's angles of a rigid-body state: k = R e3, k' = R (w x e3) = w2 R e1 - w1 R e2.
+inline AxisAngles axis_angles_of(const RigidBodyState& rb) {
+  return axis_angles(rb.attitude.col(2),
+                     rb.omega.y() * rb.attitude.col(0) - rb.omega.x() * rb.attitude.col(1));
+}
+
+// One sample's angle columns.
+inline void push_angles(Trajectory& out, double t, const AxisAngles& a) {
+  out.t.push_back(t);
+  out.theta.push_back(a.theta);
+  out.phi.push_back(a.phi);
+  out.theta_rate.push_back(a.theta_rate);
+  out.phi_rate.push_back(a.phi_rate);
+}
+
+// The extra columns of simulate_nonlinear and simulate_splitting, empty, room for n samples.
+inline void add_conserved_columns(Trajectory& out, std::size_t n) {
+  const char* names[] = {"energy", "vertical_momentum", "axial_momentum",
+                         "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
+  for (const char* name : names) {
+    out.extra.emplace_back(name, std::vector<double>{});
+    out.extra.back().second.reserve(n);
+  }
+}
+
+// One sample of those columns: q, then q minus its value at t = 0.
+inline void push_conserved(Trajectory& out, const ConservedQuantities& q,
+                           const ConservedQuantities& initial) {
+  const double values[] = {q.energy,
+                           q.vertical_momentum,
+                           q.axial_momentum,
+                           q.energy - initial.energy,
+                           q.vertical_momentum - initial.vertical_momentum,
+                           q.axial_momentum - initial.axial_momentum};
+  for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
+}
+
+}  // namespace heavytop::internal
