@@ -31,34 +31,14 @@ namespace {
 
 using namespace heavytop;
 
-Body unit_top() {
-  Body b;
-  b.A = b.B = 1.0;
-  b.C = 0.5;
-  b.mass = 1.0;
-  b.gravity = 1.0;
-  b.length = 1.0;
-  return b;
-}
+Body unit_top() { return Body{.A = 1.0, .B = 1.0, .C = 0.5, .mass = 1.0, .gravity = 1.0, .length = 1.0}; }
 
-InitialState start() {
-  InitialState s;
-  s.spin = 5.0;
-  s.theta0 = 0.3;
-  s.theta_rate0 = 0.1;
-  return s;
-}
+InitialState start() { return InitialState{.spin = 5.0, .theta0 = 0.3, .theta_rate0 = 0.1}; }
 
 // A motion whose azimuth series does not converge within 64 terms (the axis passes 0.08 rad
 // from the vertical): the elliptic integrals are evaluated at every sample.
 InitialState near_vertical_start() {
-  InitialState s;
-  s.spin = 4.0;
-  s.theta0 = 0.3;
-  s.phi0 = 0.1;
-  s.theta_rate0 = 0.2;
-  s.phi_rate0 = -0.3;
-  return s;
+  return InitialState{.spin = 4.0, .theta0 = 0.3, .phi0 = 0.1, .theta_rate0 = 0.2, .phi_rate0 = -0.3};
 }
 
 // ---- lagrange-exact ---------------------------------------------------------------------------

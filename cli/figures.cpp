@@ -144,45 +144,39 @@ std::string plot_list(const std::vector<std::pair<std::string, std::string>>& fi
 
 }  // namespace
 
-Figure plot_angles(const std::string& dir, const Comparison& c) {
+std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   Scratch scratch;
-  const auto files = write_trajectories(c, scratch);
+  const auto files = write_trajectories(c, scratch);  // once, for all three figures
   const double r = angle_range(c);
-  std::string body = fmt::format(
+  std::vector<Figure> figures;
+
+  std::string angles = fmt::format(
       "set multiplot layout 2,1 title 'Angles of the axis: every model from the same start'\n"
       "set grid\nset key outside right top\nset rmargin at screen 0.8\nset yrange [{0}:{1}]\nset format y '%.1e'\n"
       "set ylabel 'theta (rad)'\nunset xlabel\n",
       -r, r);
-  body += "plot " + plot_list(files, "1:2");
-  body += "set ylabel 'phi (rad)'\nset xlabel 't (s)'\nunset key\n";
-  body += "plot " + plot_list(files, "1:3");
-  body += "unset multiplot\n";
-  return render(dir, "angles", "theta(t) and phi(t) of every model; the nonlinear body (black) is the truth, and models that diverge leave the chart.", body, scratch, 1400, 1000);
-}
+  angles += "plot " + plot_list(files, "1:2");
+  angles += "set ylabel 'phi (rad)'\nset xlabel 't (s)'\nunset key\n";
+  angles += "plot " + plot_list(files, "1:3");
+  angles += "unset multiplot\n";
+  figures.push_back(render(dir, "angles", "theta(t) and phi(t) of every model; the nonlinear body (black) is the truth, and models that diverge leave the chart.", angles, scratch, 1400, 1000));
 
-Figure plot_axis_path(const std::string& dir, const Comparison& c) {
-  Scratch scratch;
-  const auto files = write_trajectories(c, scratch);
-  const double r = angle_range(c);
-  std::string body = fmt::format(
+  std::string path = fmt::format(
       "set title 'Path of the axis tip: nutation loops and cusps'\nset grid\nset size ratio -1\n"
       "set key outside right top\nset xrange [{0}:{1}]\nset yrange [{0}:{1}]\nset format x '%.2g'\nset format y '%.2g'\n"
       "set xtics rotate by -35\n"
       "set xlabel 'theta (rad)'\nset ylabel 'phi (rad)'\nplot ",
       -r, r);
-  body += plot_list(files, "2:3");
-  return render(dir, "axis-path", "The tip of the axis seen from above (theta against phi), every model.", body, scratch, 1300, 1000);
-}
+  path += plot_list(files, "2:3");
+  figures.push_back(render(dir, "axis-path", "The tip of the axis seen from above (theta against phi), every model.", path, scratch, 1300, 1000));
 
-Figure plot_errors(const std::string& dir, const Comparison& c) {
-  Scratch scratch;
-  const auto files = write_trajectories(c, scratch);
-  std::string body =
+  std::string errors =
       "set title 'Error of each model against the nonlinear body'\nset grid\nset logscale y\n"
       "set format y '10^{%L}'\nset key outside right top\nset xlabel 't (s)'\n"
       "set ylabel 'max(|d theta|, |d phi|) (rad)'\nplot ";
-  body += plot_list(files, "1:($4 > 1e-17 ? $4 : 1/0)", true);
-  return render(dir, "errors", "The angle error of each model against time, on a log scale.", body, scratch);
+  errors += plot_list(files, "1:($4 > 1e-17 ? $4 : 1/0)", true);
+  figures.push_back(render(dir, "errors", "The angle error of each model against time, on a log scale.", errors, scratch));
+  return figures;
 }
 
 Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state) {
@@ -246,10 +240,8 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
                 plot, scratch, 1500, 950);
 }
 
-Figure plot_sweep_map(const std::string& dir, const Body& body, const InitialState& state,
-                      const std::vector<SweepAxis>& axes, const std::vector<SweepVerdict>& verdicts) {
-  (void)body;
-  (void)state;
+Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
+                      const std::vector<SweepVerdict>& verdicts) {
   Scratch scratch;
   const std::string data = scratch.file("map.dat");
   {

@@ -183,4 +183,29 @@ std::string comparison_text(const Comparison& c, double t_end) {
   return out.str();
 }
 
+std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear) {
+  std::string h;
+  for (const auto& a : axes) h += a.key + ",";
+  for (std::size_t m = 0; m < kLinearModels.size(); ++m) h += fmt::format("{}{}", m ? "," : "", name(kLinearModels[m]));
+  if (nonlinear) h += ",nonlinear";
+  return h + "\n";
+}
+
+std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& verdicts) {
+  fmt::memory_buffer out;
+  for (std::size_t r = 0; r < verdicts.size(); ++r) {
+    std::size_t index = begin + r, stride = 1;
+    for (const auto& a : axes) stride *= a.count;
+    for (const auto& a : axes) {
+      stride /= a.count;
+      fmt::format_to(std::back_inserter(out), "{},", a.value(index / stride % a.count));
+    }
+    const auto& v = verdicts[r];
+    fmt::format_to(std::back_inserter(out), "{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]));
+    if (v.nonlinear) fmt::format_to(std::back_inserter(out), ",{}", int(*v.nonlinear));
+    out.push_back('\n');
+  }
+  return fmt::to_string(out);
+}
+
 }  // namespace heavytop::cli

@@ -7,6 +7,7 @@
 
 #include "heavytop/compare.hpp"
 #include "heavytop/stability.hpp"
+#include "heavytop/sweep.hpp"
 
 namespace heavytop::cli {
 
@@ -38,5 +39,11 @@ std::string trajectory_csv(const Trajectory& trajectory);
 std::string comparison_json(const Comparison& comparison);
 std::string comparison_csv(const Comparison& comparison);
 std::string comparison_text(const Comparison& comparison, double t_end);
+
+/// The sweep's CSV: the header (varied keys, a column per linear model, `nonlinear` if asked)
+/// and the rows of grid points begin, begin + 1, ... with their verdicts.
+std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear);
+std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin,
+                           const std::vector<SweepVerdict>& verdicts);
 
 }  // namespace heavytop::cli

@@ -132,8 +132,8 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   const double horizon = t_end.value_or(default_horizon(body, state.spin));
   const Comparison c = compare_models(body, state, sample_times(horizon, 4001));
 
-  std::vector<Figure> figures{plot_angles(dir, c), plot_axis_path(dir, c), plot_errors(dir, c),
-                              plot_stability_diagram(dir, body, state)};
+  std::vector<Figure> figures = plot_motion(dir, c);
+  figures.push_back(plot_stability_diagram(dir, body, state));
   // The stability map: B/A over the values a real body allows, spin up to well past the truth's threshold.
   const double lo = std::abs(body.C - body.A) / body.A, hi = (body.C + body.A) / body.A;
   double top = std::max(2.0 * std::abs(state.spin), 1e-9);
@@ -141,17 +141,14 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
     if (r.kind != LinearModelKind::BodyFixed && r.critical) top = std::max(top, 2.0 * *r.critical);
   const std::vector<SweepAxis> axes{{"B/A", lo, hi, 200}, {"spin", 0.0, top, 200}};
   const auto verdicts = sweep_verdicts(body, state, axes, SweepOptions{}, 0, grid_size(axes));
-  figures.push_back(plot_sweep_map(dir, body, state, axes, verdicts));
+  figures.push_back(plot_sweep_map(dir, axes, verdicts));
 
-  std::string sweep_csv = "B/A,spin,first-order,body-fixed,linearized\n";
-  for (std::size_t i = 0; i < verdicts.size(); ++i)
-    sweep_csv += fmt::format("{},{},{},{},{}\n", axes[0].value(i / 200), axes[1].value(i % 200),
-                             int(verdicts[i].linear[0]), int(verdicts[i].linear[1]), int(verdicts[i].linear[2]));
   write_output((fs::path(dir) / "stability.json").string(), stability_json(body, state.spin, reports));
   write_output((fs::path(dir) / "comparison.json").string(), comparison_json(c));
   write_output((fs::path(dir) / "comparison.csv").string(), comparison_csv(c));
   write_output((fs::path(dir) / "trajectories.csv").string(), all_trajectories_csv(c));
-  write_output((fs::path(dir) / "stability-map.csv").string(), sweep_csv);
+  write_output((fs::path(dir) / "stability-map.csv").string(),
+               sweep_csv_header(axes, false) + sweep_csv_rows(axes, 0, verdicts));
 
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop report</title><style>"

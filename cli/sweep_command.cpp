@@ -14,7 +14,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "heavytop/linear_models.hpp"
+#include "formats.hpp"
 #include "heavytop/sweep.hpp"
 
 namespace heavytop::cli {
@@ -25,31 +25,6 @@ struct SweepSettings {
   std::string model;
   SweepOptions options;
 };
-
-std::string header(const std::vector<SweepAxis>& axes, bool nonlinear) {
-  std::string h;
-  for (const auto& a : axes) h += a.key + ",";
-  for (std::size_t m = 0; m < kLinearModels.size(); ++m) h += fmt::format("{}{}", m ? "," : "", name(kLinearModels[m]));
-  if (nonlinear) h += ",nonlinear";
-  return h + "\n";
-}
-
-std::string rows(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& verdicts) {
-  fmt::memory_buffer out;
-  for (std::size_t r = 0; r < verdicts.size(); ++r) {
-    std::size_t index = begin + r, stride = 1;
-    for (const auto& a : axes) stride *= a.count;
-    for (const auto& a : axes) {
-      stride /= a.count;
-      fmt::format_to(std::back_inserter(out), "{},", a.value(index / stride % a.count));
-    }
-    const auto& v = verdicts[r];
-    fmt::format_to(std::back_inserter(out), "{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]));
-    if (v.nonlinear) fmt::format_to(std::back_inserter(out), ",{}", int(*v.nonlinear));
-    out.push_back('\n');
-  }
-  return fmt::to_string(out);
-}
 
 /// Everything the rows depend on, in one line: a resumed sweep must have the same.
 std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o) {
@@ -99,7 +74,7 @@ Action add_sweep_command(CLI::App& app) {
     const bool to_file = !path.empty() && path != "-";
     const std::string partial = path + ".partial", args_file = path + ".partial.args";
     const std::string args = fingerprint(*inputs, axes, s->options);
-    const std::string head = header(axes, s->options.nonlinear);
+    const std::string head = sweep_csv_header(axes, s->options.nonlinear);
 
     std::size_t done = 0;
     std::FILE* out = stdout;
@@ -130,7 +105,7 @@ Action add_sweep_command(CLI::App& app) {
     ProgressBar progress("sweep", static_cast<double>(total));
     while (done < total) {
       const std::size_t end = std::min(total, done + chunk);
-      const std::string text = rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
+      const std::string text = sweep_csv_rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
       if (std::fwrite(text.data(), 1, text.size(), out) != text.size() || std::fflush(out) != 0)
         throw Failure("--output: write failed");
       done = end;

@@ -22,7 +22,6 @@ struct SpinPolynomial {
   double c0 = 0.0, c1 = 0.0, c2 = 0.0;
   double operator()(double s) const { return c0 + s * (c1 + s * c2); }
   double magnitude(double s) const { return std::abs(c0) + s * (std::abs(c1) + s * std::abs(c2)); }
-  bool identically_zero() const { return c0 == 0.0 && c1 == 0.0 && c2 == 0.0; }
 };
 
 SpinPolynomial product(const SpinPolynomial& p, const SpinPolynomial& q) {
@@ -103,8 +102,6 @@ bool vanishes(const Eigen::Matrix4d& residual) {
   return residual.cwiseAbs().maxCoeff() <= kSemisimple;
 }
 
-std::complex<double> square_root(std::complex<double> mu) { return std::sqrt(mu); }
-
 }  // namespace
 
 StabilityVerdict linear_stability(const LinearModel& model, double spin) {
@@ -135,7 +132,7 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
 
   StabilityVerdict v;
   for (auto mu : {mu1, mu2}) {
-    const auto r = square_root(mu);
+    const auto r = std::sqrt(mu);
     v.eigenvalues.push_back(-r + 0.0);  // + 0.0: no negative zeros in reports
     v.eigenvalues.push_back(r + 0.0);
   }
