@@ -22,8 +22,4 @@ Action add_compare_command(CLI::App& app);
 Action add_sweep_command(CLI::App& app);
 Action add_report_command(CLI::App& app);
 
-/// Writes the report for `body` and `state` into folder `dir` (created if needed).
-void write_report(const std::string& dir, const Body& body, const InitialState& state,
-                  std::optional<double> t_end);
-
 }  // namespace heavytop::cli

@@ -1,26 +1,22 @@
 #include "common.hpp"
 
+#include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <unistd.h>
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 namespace heavytop::cli {
 namespace {
 
-struct KeySpec {
+struct KeyHelp {
   const char* key;      // as in the configuration file, "section.name"
   const char* option;   // CLI11 option names
   const char* help;
 };
 
-constexpr KeySpec kKeys[] = {
+constexpr KeyHelp kKeys[] = {
     {"body.A", "--A", "kg m^2, moment of inertia about body x through O (> 0)"},
     {"body.B", "--B", "kg m^2, moment of inertia about body y through O (> 0)"},
     {"body.C", "--C", "kg m^2, moment of inertia about the spin axis z through O (> 0)"},
@@ -34,34 +30,21 @@ constexpr KeySpec kKeys[] = {
     {"motion.phi_rate0", "--phi_rate0,--phi-rate0", "rad/s, initial phi'"},
 };
 
-double* field(Body& b, InitialState& s, const std::string& key) {
-  static const std::map<std::string, double Body::*> body_fields = {
-      {"body.A", &Body::A},         {"body.B", &Body::B},       {"body.C", &Body::C},
-      {"body.mass", &Body::mass},   {"body.gravity", &Body::gravity},
-      {"body.length", &Body::length}};
-  static const std::map<std::string, double InitialState::*> state_fields = {
-      {"motion.spin", &InitialState::spin},
-      {"motion.theta0", &InitialState::theta0},
-      {"motion.phi0", &InitialState::phi0},
-      {"motion.theta_rate0", &InitialState::theta_rate0},
-      {"motion.phi_rate0", &InitialState::phi_rate0}};
-  if (auto it = body_fields.find(key); it != body_fields.end()) return &(b.*(it->second));
-  if (auto it = state_fields.find(key); it != state_fields.end()) return &(s.*(it->second));
-  return nullptr;
-}
-
-std::optional<double> as_number(const toml::node& node, const std::string& key) {
-  if (auto v = node.value_exact<double>()) return *v;
-  if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
-  throw InvalidInput(key, "must be a number");
-}
-
 }  // namespace
+
+std::string flag_of(const std::string& field) {
+  static const std::map<std::string, std::string> flags = {
+      {"rtol", "--rtol"}, {"atol", "--atol"},       {"max_steps", "--max-steps"}, {"step", "--step"},
+      {"order", "--order"}, {"horizon", "--horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
+  };
+  auto it = flags.find(field);
+  return it == flags.end() ? field : it->second;
+}
 
 Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(formats.front()) {
   command.add_option("--config", config_path_, "TOML configuration file (SPEC section 4); without it the built-in toy top")
       ->type_name("FILE");
-  for (const KeySpec& spec : kKeys) {
+  for (const KeyHelp& spec : kKeys) {
     Override& o = overrides_[spec.key];
     o.option = command.add_option(spec.option, o.value, spec.help)
                    ->type_name("NUM")
@@ -74,112 +57,25 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(fo
   command.add_option("--output", output_, "write to FILE instead of stdout")->type_name("FILE");
 }
 
-void Inputs::allow_section(const std::string& section, std::vector<std::string> keys) {
-  sections_[section] = std::move(keys);
-}
-
 void Inputs::resolve() {
   Body body = example_toy_top();
   InitialState state = example_motion();
   if (!config_path_.empty()) {
-    toml::table table;
-    try {
-      table = toml::parse_file(config_path_);
-    } catch (const toml::parse_error& e) {
-      const auto& where = e.source().begin;
-      if (!std::filesystem::exists(config_path_))
-        throw InvalidInput("--config", fmt::format("cannot read '{}': no such file", config_path_));
-      throw InvalidInput("--config", fmt::format("{}:{}:{}: malformed TOML: {}", config_path_,
-                                                 where.line, where.column, e.description()));
-    }
-    body = Body{};
-    body.gravity = 9.81;
-    state = InitialState{};
-    bool seen_body = false;
-    for (const auto& [section_key, node] : table) {
-      const std::string section(section_key.str());
-      const auto* sub = node.as_table();
-      const bool known = section == "body" || section == "motion" || sections_.count(section);
-      if (!known) throw InvalidInput(section, "unknown section in " + config_path_);
-      if (!sub) throw InvalidInput(section, "must be a [section] table");
-      seen_body = seen_body || section == "body";
-      for (const auto& [name_key, value] : *sub) {
-        const std::string key = section + "." + std::string(name_key.str());
-        if (double* f = field(body, state, key)) {
-          *f = *as_number(value, key);
-        } else if (auto it = sections_.find(section); it != sections_.end() &&
-                   std::find(it->second.begin(), it->second.end(), name_key.str()) != it->second.end()) {
-          if (auto s = value.value_exact<std::string>()) section_strings_[key] = *s;
-          else section_numbers_[key] = *as_number(value, key);
-        } else {
-          throw InvalidInput(key, "unknown key in " + config_path_);
-        }
-      }
-      if (section == "body") {
-        for (const char* required : {"A", "B", "C", "mass", "length"})
-          if (!sub->contains(required))
-            throw InvalidInput(std::string("body.") + required,
-                               "is required in [body] (or give --" + std::string(required) + ")");
-      }
-    }
-    if (!seen_body) {
-      // A configuration with no [body]: every body key must come from the options.
-      for (const char* required : {"A", "B", "C", "mass", "length"})
-        if (!overrides_.at(std::string("body.") + required).option->count())
-          throw InvalidInput(std::string("body.") + required,
-                             "is required in [body] (or give --" + std::string(required) + ")");
-    }
+    config_ = io::read_configuration(config_path_, "--config");
+    body = config_.body;
+    state = config_.motion;
+    // Every required body key from the file or the command line.
+    for (const std::string& key : io::required_body_keys())
+      if (!config_.given.count(key) && !overrides_.at(key).option->count())
+        throw InvalidInput(key, fmt::format("is required in [body] (or give --{})",
+                                            key.substr(key.find('.') + 1)));
   }
   for (auto& [key, o] : overrides_)
-    if (o.option->count()) *field(body, state, key) = o.value;
+    if (o.option->count()) *io::config_field(body, state, key) = o.value;
   validate(body);
   validate(state);
   body_ = body;
   state_ = state;
-}
-
-std::optional<double> Inputs::section_number(const std::string& section, const std::string& key) const {
-  auto it = section_numbers_.find(section + "." + key);
-  if (it == section_numbers_.end()) return std::nullopt;
-  return it->second;
-}
-
-std::optional<std::string> Inputs::section_string(const std::string& section,
-                                                  const std::string& key) const {
-  auto it = section_strings_.find(section + "." + key);
-  if (it == section_strings_.end()) return std::nullopt;
-  return it->second;
-}
-
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& fill) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string pattern = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
-  const int fd = mkstemp(pattern.data());
-  if (fd < 0) throw Failure(fmt::format("--output: cannot create a file in '{}'", dir.string()));
-  ::close(fd);
-  try {
-    fill(pattern);
-    fs::rename(pattern, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(pattern, ignored);
-    throw;
-  }
-}
-
-void write_output(const std::string& path, const std::string& content) {
-  if (path.empty() || path == "-") {
-    std::cout << content << std::flush;
-    return;
-  }
-  write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << content;
-    out.close();
-    if (!out) throw Failure(fmt::format("--output: cannot write '{}'", path));
-  });
 }
 
 namespace {
@@ -206,6 +102,5 @@ void ProgressBar::update(double done) {
 ProgressBar::~ProgressBar() {
   if (shown_) std::cerr << "\n";
 }
-
 
 }  // namespace heavytop::cli

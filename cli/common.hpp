@@ -1,35 +1,37 @@
 #pragma once
-// What every heavytop command shares: the body and motion options, the configuration file,
-// output to a file by a temporary name and a rename, and the error conventions of SPEC section 1.
+// What every heavytop command shares: the body and motion options over --config, the output
+// path, the progress bar, and the mapping of the library's field names to this command
+// line's flags. Commands translate flags to the library's options, call it, and hand the
+// result to heavytop_io; nothing here computes or formats a result.
 
-#include <functional>
 #include <map>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "heavytop/body.hpp"
+#include "heavytop/io/config.hpp"
+#include "heavytop/io/output.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop::cli {
 
-/// Internal or numerical failure (exit 1); bad input is heavytop::InvalidInput (exit 2).
-struct Failure : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using io::Failure;
+
+/// The command line's spelling of a library field ("rtol" -> "--rtol", "max_tilt" ->
+/// "--max-tilt"); configuration keys ("body.A", "simulate.t_end") are kept as they are.
+std::string flag_of(const std::string& field);
+
+/// Writes `content` to --output ("" or "-": stdout), as io::write_output with key "--output".
+inline void write_output(const std::string& path, const std::string& content) { io::write_output(path, content, "--output"); }
 
 /// The body and motion as given on the command line and in --config, merged.
 class Inputs {
  public:
   /// Adds --config, one option per SPEC key, --format (choices, first is default), --output.
   Inputs(CLI::App& command, std::vector<std::string> formats);
-
-  /// A further section the configuration file may hold for this command, e.g. "simulate",
-  /// with its keys. Values reach the command through section_value().
-  void allow_section(const std::string& section, std::vector<std::string> keys);
 
   /// Loads --config (if any), applies the options over it and validates. Throws InvalidInput.
   /// Without --config the base is the built-in example (a toy top), so options alone work.
@@ -39,9 +41,8 @@ class Inputs {
   const InitialState& state() const { return state_; }
   const std::string& format() const { return format_; }
   const std::string& output() const { return output_; }
-  /// A value of an allowed further section of the configuration file, if given there.
-  std::optional<double> section_number(const std::string& section, const std::string& key) const;
-  std::optional<std::string> section_string(const std::string& section, const std::string& key) const;
+  /// The configuration file's further sections (empty without --config).
+  const io::Configuration& configuration() const { return config_; }
 
  private:
   struct Override {
@@ -52,20 +53,24 @@ class Inputs {
   std::string format_;
   std::string output_;
   std::map<std::string, Override> overrides_;  // "body.A", "motion.spin", ...
-  std::map<std::string, std::vector<std::string>> sections_;
-  std::map<std::string, double> section_numbers_;
-  std::map<std::string, std::string> section_strings_;
+  io::Configuration config_;
   Body body_;
   InitialState state_;
 };
 
-/// Writes `content` to `path` ("" or "-": stdout) through a temporary file in the same
-/// folder and a rename, so a failure never leaves a partial file.
-void write_output(const std::string& path, const std::string& content);
-
-/// Writes a file through a temporary name and a rename; `fill` writes the content to the
-/// temporary path. Used for outputs produced by other programs (figures).
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& fill);
+/// A command's own option that a configuration section may also set ("simulate.t_end"):
+/// the command line wins, then the file, then the default already in `value`.
+template <class T>
+void apply_setting(const io::Configuration& config, const std::string& key, const CLI::Option* option, T& value) {
+  if (option->count()) return;
+  if constexpr (std::is_same_v<T, std::string>) {
+    if (auto v = config.string(key)) value = *v;
+  } else if constexpr (std::is_integral_v<T>) {
+    if (auto v = config.integer(key)) value = static_cast<T>(*v);
+  } else {
+    if (auto v = config.number(key)) value = *v;
+  }
+}
 
 /// A progress bar on stderr, shown only when stderr is a terminal and the work has taken
 /// more than a second; redrawn at most ten times a second.
@@ -83,6 +88,5 @@ class ProgressBar {
   double start_;
   double last_draw_ = 0.0;
 };
-
 
 }  // namespace heavytop::cli

@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "formats.hpp"
+#include "heavytop/io/formats.hpp"
 #include "heavytop/compare.hpp"
 
 namespace heavytop::cli {
@@ -28,7 +28,7 @@ Action add_compare_command(CLI::App& app) {
     const Comparison c = compare_models(inputs->body(), inputs->state(),
                                         sample_times(*t_end, static_cast<std::size_t>(*samples)), *tol);
     const std::string& f = inputs->format();
-    write_output(inputs->output(), f == "json" ? comparison_json(c) : f == "csv" ? comparison_csv(c) : comparison_text(c, *t_end));
+    write_output(inputs->output(), f == "json" ? io::comparison_json(c) : f == "csv" ? io::comparison_csv(c) : io::comparison_text(c, *t_end));
   };
 }
 

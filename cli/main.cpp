@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/body.hpp"
+#include "heavytop/report/report.hpp"
 
 int main(int argc, char** argv) {
   using namespace heavytop;
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
     const std::string dir = "heavytop-report";
     std::cout << "heavytop: the built-in example, a wooden toy top (60 g, 40 mm disc, centre of mass 25 mm "
                  "above the tip) spun at 200 rad/s, started 0.05 rad off vertical.\n";
-    cli::write_report(dir, example_toy_top(), example_motion(), std::nullopt);
+    report::write_report(dir, example_toy_top(), example_motion(), std::nullopt);
     std::cout << "heavytop: wrote " << dir << "/report.html (open it in a browser); "
               << "`heavytop --help` lists the commands.\n";
     return 0;
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     std::cerr << fmt::format("heavytop: error: {}\n", e.what());
     return 2;
   } catch (const InvalidInput& e) {
-    std::cerr << fmt::format("heavytop: error: {}: {}\n", e.key(), e.rule());
+    std::cerr << fmt::format("heavytop: error: {}: {}\n", cli::flag_of(e.key()), e.rule());
     return 2;
   } catch (const std::exception& e) {
     std::cerr << fmt::format("heavytop: error: {}\n", e.what());

@@ -1,7 +1,8 @@
 // heavytop stability: each linear model's verdict at the spin, its stable spins, its eigenvalues.
 #include "commands.hpp"
 #include "common.hpp"
-#include "formats.hpp"
+#include "heavytop/io/formats.hpp"
+#include "heavytop/stability.hpp"
 
 namespace heavytop::cli {
 
@@ -11,10 +12,10 @@ Action add_stability_command(CLI::App& app) {
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
   return [inputs] {
     inputs->resolve();
-    const auto reports = analyse(inputs->body(), inputs->state().spin);
+    const auto models = analyse_stability(inputs->body(), inputs->state().spin);
     write_output(inputs->output(), inputs->format() == "json"
-                                       ? stability_json(inputs->body(), inputs->state().spin, reports)
-                                       : stability_text(inputs->body(), inputs->state().spin, reports));
+                                       ? io::stability_json(inputs->body(), inputs->state().spin, models)
+                                       : io::stability_text(inputs->body(), inputs->state().spin, models));
   };
 }
 

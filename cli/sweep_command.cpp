@@ -14,7 +14,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "formats.hpp"
+#include "heavytop/io/formats.hpp"
 #include "heavytop/sweep.hpp"
 
 namespace heavytop::cli {
@@ -74,7 +74,7 @@ Action add_sweep_command(CLI::App& app) {
     const bool to_file = !path.empty() && path != "-";
     const std::string partial = path + ".partial", args_file = path + ".partial.args";
     const std::string args = fingerprint(*inputs, axes, s->options);
-    const std::string head = sweep_csv_header(axes, s->options.nonlinear);
+    const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);
 
     std::size_t done = 0;
     std::FILE* out = stdout;
@@ -105,7 +105,7 @@ Action add_sweep_command(CLI::App& app) {
     ProgressBar progress("sweep", static_cast<double>(total));
     while (done < total) {
       const std::size_t end = std::min(total, done + chunk);
-      const std::string text = sweep_csv_rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
+      const std::string text = io::sweep_csv_rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
       if (std::fwrite(text.data(), 1, text.size(), out) != text.size() || std::fflush(out) != 0)
         throw Failure("--output: write failed");
       done = end;

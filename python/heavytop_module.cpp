@@ -6,6 +6,7 @@
 // arrays filled in C++, with the GIL released while the core computes. Bad input raises
 // heavytop.InvalidInput, a ValueError whose message is the command line's "<key>: <rule>".
 #include <algorithm>
+#include <map>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -25,7 +26,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "formats.hpp"
+#include "heavytop/io/formats.hpp"
 #include "heavytop/body.hpp"
 #include "heavytop/compare.hpp"
 #include "heavytop/lagrange_exact.hpp"
@@ -184,7 +185,7 @@ py::dict simulate(const Body& body, const std::string& model, double spin, doubl
   settings.integrator.progress = poll_signals();
   Trajectory tr = without_gil(
       [&] { return chosen->run(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), settings); });
-  const auto names = cli::trajectory_columns(tr);
+  const auto names = tr.column_names();
   py::dict out;
   std::vector<double>* base[] = {&tr.t, &tr.theta, &tr.phi, &tr.theta_rate, &tr.phi_rate};
   for (std::size_t c = 0; c < names.size(); ++c)
@@ -197,7 +198,7 @@ py::dict simulate(const Body& body, const std::string& model, double spin, doubl
 py::object stability(const Body& body, double spin) {
   validate(body);
   motion(spin, 0, 0, 0, 0);
-  return from_json(without_gil([&] { return cli::stability_json(body, spin, cli::analyse(body, spin)); }));
+  return from_json(without_gil([&] { return io::stability_json(body, spin, analyse_stability(body, spin)); }));
 }
 
 py::object compare(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
@@ -210,7 +211,7 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
   NonlinearOptions options = tolerances(rtol, atol);
   options.progress = poll_signals();
   return from_json(without_gil([&] {
-    return cli::comparison_json(compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options));
+    return io::comparison_json(compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options));
   }));
 }
 
@@ -598,9 +599,15 @@ PYBIND11_MODULE(heavytop, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InvalidInput& e) {
-      py::object error = invalid_input(e.what());
-      error.attr("key") = e.key();
-      error.attr("rule") = e.rule();
+      // The command line's spelling of the library's field names, as the tests expect.
+      static const std::map<std::string, std::string> flags = {
+          {"rtol", "--rtol"}, {"atol", "--atol"}, {"max_steps", "--max-steps"}, {"horizon", "--horizon"},
+          {"max_tilt", "--max-tilt"}, {"vary", "--vary"}, {"step", "--step"}, {"order", "--order"}};
+      const auto it = flags.find(e.key());
+      const InvalidInput shown(it == flags.end() ? e.key() : it->second, e.rule());
+      py::object error = invalid_input(shown.what());
+      error.attr("key") = shown.key();
+      error.attr("rule") = shown.rule();
       PyErr_SetObject(invalid_input.ptr(), error.ptr());
     }
   });
@@ -672,7 +679,7 @@ gravity: m/s^2, g (default 9.81), acting along -zeta)doc")
       "rest 0. E.g. heavytop.simulate(heavytop.example_toy_top(), **heavytop.example_motion()).");
 
   m.def("stability", &stability, kStabilityDoc, "body"_a, "spin"_a);
-  m.def("simulate", &simulate, kSimulateDoc, "body"_a, "model"_a = "nonlinear", py::kw_only(), "spin"_a = 0.0,
+  m.def("simulate", &heavytop::python::simulate, kSimulateDoc, "body"_a, "model"_a = "nonlinear", py::kw_only(), "spin"_a = 0.0,
         "theta0"_a = 0.0, "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "t_end"_a = 10.0,
         "samples"_a = 1001, "method"_a = py::none(), "rtol"_a = py::none(), "atol"_a = py::none());
   m.def("compare", &compare, kCompareDoc, "body"_a, py::kw_only(), "spin"_a = 0.0, "theta0"_a = 0.0,
@@ -681,7 +688,7 @@ gravity: m/s^2, g (default 9.81), acting along -zeta)doc")
   m.def("sweep", &sweep, kSweepDoc, "body"_a, "vary"_a, py::kw_only(), "spin"_a = 0.0, "theta0"_a = 0.0,
         "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "nonlinear"_a = false, "horizon"_a = 100.0,
         "max_tilt"_a = 0.5, "rtol"_a = py::none(), "atol"_a = py::none());
-  m.def("grid_values", &grid_values, kGridValuesDoc, "start"_a, "stop"_a, "count"_a);
+  m.def("grid_values", &heavytop::python::grid_values, kGridValuesDoc, "start"_a, "stop"_a, "count"_a);
   m.def("derive", &derive, kDeriveDoc, "method"_a = "euler-moving", "sequence"_a = "phi-theta", "order"_a = 1);
   m.def("derive_rotations", &derive_rotations, kRotationsDoc, "order"_a = 1);
   m.def("derive_check", &derive_check, kCheckDoc, "order"_a = py::none());

@@ -1,6 +1,8 @@
 #include "heavytop/body.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace heavytop {
 
@@ -18,14 +20,22 @@ void require_positive(double value, const char* key) {
   if (!(value > 0.0)) throw InvalidInput(key, "must be > 0");
 }
 
-// Rounding in user-computed moments (0.1 + 0.2 vs 0.3) must not reject a flat body.
-constexpr double kTriangleSlack = 1e-12;
-
 void require_triangle(double a, double b, double c, const char* key, const char* rule) {
-  if (a + b < c * (1.0 - kTriangleSlack)) throw InvalidInput(key, rule);
+  if (a + b < c * (1.0 - kSymmetryTolerance)) throw InvalidInput(key, rule);
 }
 
 }  // namespace
+
+bool is_symmetric(const Body& body) noexcept {
+  return std::abs(body.A - body.B) <= kSymmetryTolerance * std::max(body.A, body.B);
+}
+
+double gravity_time(const Body& body) noexcept {
+  const double k = std::abs(body.mgR());
+  return k > 0.0 ? std::sqrt(std::min(body.A, body.B) / k) : std::numeric_limits<double>::infinity();
+}
+
+bool is_planar(const Body& body) noexcept { return body.A + body.B <= body.C * (1.0 + kSymmetryTolerance); }
 
 void validate(const Body& body) {
   require_positive(body.A, "body.A");

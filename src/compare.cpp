@@ -3,14 +3,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "heavytop/frames.hpp"
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/linear_motion.hpp"
 #include "heavytop/linear_models.hpp"
+#include "heavytop/stability.hpp"
 
 namespace heavytop {
 namespace {
 
-double tilt(double theta, double phi) { return std::acos(std::clamp(std::cos(theta) * std::cos(phi), -1.0, 1.0)); }
 double azimuth(double theta, double phi) { return std::atan2(-std::sin(phi), std::sin(theta) * std::cos(phi)); }
 
 ModelComparison against(const std::string& model, Trajectory tr, const Trajectory& truth,
@@ -34,6 +35,17 @@ ModelComparison against(const std::string& model, Trajectory tr, const Trajector
 }
 
 }  // namespace
+
+double natural_horizon(const Body& body, double spin) {
+  const StabilityVerdict v = linear_stability(linear_model(LinearModelKind::FirstOrder, body), spin);
+  std::vector<double> f;
+  for (double x : v.frequencies)
+    if (x > 0.0) f.push_back(x);
+  if (v.stable && !f.empty())
+    return std::min(2.0 * 2.0 * std::numbers::pi / f.front(), 40.0 * 2.0 * std::numbers::pi / f.back());
+  const double scale = gravity_time(body);
+  return std::isfinite(scale) ? 20.0 * scale : 10.0;
+}
 
 MotionFrequencies measure_frequencies(const Trajectory& tr) {
   const std::size_t n = tr.size();
@@ -83,7 +95,7 @@ Comparison compare_models(const Body& body, const InitialState& state,
     c.models.push_back(against(std::string(name(kind)),
                                simulate_linear(linear_model(kind, body), state, times, LinearMethod::Analytic),
                                c.nonlinear, c.nonlinear_frequencies));
-  if (std::abs(body.A - body.B) <= kSymmetryTolerance * std::max(body.A, body.B))
+  if (is_symmetric(body))
     c.models.push_back(against("lagrange-exact", simulate_lagrange_exact(body, state, times), c.nonlinear,
                                c.nonlinear_frequencies));
   return c;

@@ -41,4 +41,8 @@ RigidBodyState initial_rigid_body_state(const InitialState& s) {
   return x;
 }
 
+double tilt(double theta, double phi) {
+  return std::acos(std::clamp(std::cos(theta) * std::cos(phi), -1.0, 1.0));
+}
+
 }  // namespace heavytop

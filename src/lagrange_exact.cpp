@@ -9,7 +9,7 @@
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 
-#include "rigid_body_common.hpp"
+#include "detail/integration.hpp"
 
 namespace heavytop {
 
@@ -451,7 +451,7 @@ void require_finite_state(const RigidBodyState& s) {
 
 void validate_symmetric(const Body& body) {
   validate(body);
-  if (std::abs(body.A - body.B) > kSymmetryTolerance * std::max(body.A, body.B))
+  if (!is_symmetric(body))
     throw InvalidInput("body.B",
                        "lagrange-exact needs a symmetric body: B must equal A (to 1e-12 relative)");
 }
@@ -683,7 +683,7 @@ Trajectory simulate_lagrange_exact(const Body& body, const InitialState& initial
   Trajectory out;
   out.reserve(times.size());
   for (double t : times) {
-    internal::push_angles(out, t, lagrange_axis_angles(top, t));
+    detail::push_angles(out, t, lagrange_axis_angles(top, t));
   }
   return out;
 }

@@ -47,11 +47,11 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
   return m;
 }
 
-Eigen::Matrix4d state_matrix(const LinearModel& model, double spin) {
+Eigen::Matrix4d state_matrix(const LinearModel& model, double spin, double rate) {
   const Eigen::Matrix2d m_inv = model.M.inverse();
   Eigen::Matrix4d j;
-  j << Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Identity(), -m_inv * model.K(spin),
-      -m_inv * model.G(spin);
+  j << Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Identity(), -m_inv * model.K(spin) / (rate * rate),
+      -m_inv * model.G(spin) / rate;
   return j;
 }
 

@@ -4,6 +4,8 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "detail/quadratic.hpp"
+
 namespace heavytop {
 namespace {
 
@@ -51,15 +53,7 @@ Interpolants<T> interpolants(T mu1, T mu2, T alpha1, T alpha2, double t) {
 
 std::pair<Complex, Complex> mu_roots(const LinearModel& model, double spin) {
   const CharacteristicPolynomial p = characteristic_polynomial(model, spin);
-  const double disc = p.a2 * p.a2 - 4.0 * p.a4 * p.a0;
-  if (disc < 0.0) {
-    const Complex mu(-p.a2 / (2.0 * p.a4), std::sqrt(-disc) / (2.0 * p.a4));
-    return {mu, std::conj(mu)};
-  }
-  const double q = -0.5 * (p.a2 + std::copysign(std::sqrt(disc), p.a2));
-  const double mu1 = q / p.a4;
-  const double mu2 = q != 0.0 ? p.a0 / q : 0.0;
-  return {mu1, mu2};
+  return detail::quadratic_roots(p.a4, p.a2, p.a0, p.a2 * p.a2 - 4.0 * p.a4 * p.a0);
 }
 
 }  // namespace

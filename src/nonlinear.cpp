@@ -14,11 +14,11 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
-#include "rigid_body_common.hpp"
+#include "detail/integration.hpp"
 
 namespace heavytop {
 
-using namespace internal;
+using namespace detail;
 
 namespace {
 
@@ -103,8 +103,7 @@ struct Equations {
 // ---- Conversions ------------------------------------------------------------------------------
 
 State to_state(const RigidBodyState& rb) {
-  Eigen::Quaterniond q(rb.attitude);
-  q.normalize();
+  const Eigen::Quaterniond q = unit_quaternion(rb.attitude);
   return {q.w(), q.x(), q.y(), q.z(), rb.omega.x(), rb.omega.y(), rb.omega.z(), 0.0};
 }
 
@@ -147,10 +146,10 @@ double tilt_cos_rate(const State& x) {
 
 Violation first_violation(const NonlinearOptions& o) {
   if (!(std::isfinite(o.rtol) && o.rtol >= 1e-15 && o.rtol <= 1.0))
-    return std::pair{"--rtol", "must be a finite number in [1e-15, 1]"};
+    return std::pair{"rtol", "must be a finite number in [1e-15, 1]"};
   if (!(std::isfinite(o.atol) && o.atol > 0.0))
-    return std::pair{"--atol", "must be a finite number > 0"};
-  if (o.max_steps == 0) return std::pair{"--max-steps", "must be > 0"};
+    return std::pair{"atol", "must be a finite number > 0"};
+  if (o.max_steps == 0) return std::pair{"max_steps", "must be > 0"};
   return std::nullopt;
 }
 
@@ -167,12 +166,7 @@ ConservedQuantities conserved_of_state(const Body& body, const State& x, bool sy
     b1 = c * g.g1 + s * g.g2;
     b2 = c * g.g2 - s * g.g1;
   }
-  const double w3 = x[kW3];
-  ConservedQuantities q;
-  q.energy = 0.5 * (body.A * w1 * w1 + body.B * w2 * w2 + body.C * w3 * w3) + body.mgR() * g.g3;
-  q.vertical_momentum = body.A * w1 * b1 + body.B * w2 * b2 + body.C * w3 * g.g3;
-  q.axial_momentum = body.C * w3;
-  return q;
+  return conserved_from(body, w1, w2, x[kW3], b1, b2, g.g3);
 }
 
 // ---- The integrator ---------------------------------------------------------------------------
@@ -418,14 +412,8 @@ std::string NonlinearSummary::BriefReport() const {
 }
 
 ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState& x) {
-  const Eigen::Vector3d inertia(body.A, body.B, body.C);
-  const Eigen::Vector3d momentum = inertia.cwiseProduct(x.omega);  // I w, body axes
-  const Eigen::Vector3d gamma = x.attitude.row(2).transpose();     // R^T e_zeta
-  ConservedQuantities q;
-  q.energy = 0.5 * x.omega.dot(momentum) + body.mgR() * gamma.z();
-  q.vertical_momentum = momentum.dot(gamma);
-  q.axial_momentum = momentum.z();
-  return q;
+  const Eigen::Vector3d gamma = x.attitude.row(2).transpose();  // R^T e_zeta
+  return conserved_from(body, x.omega.x(), x.omega.y(), x.omega.z(), gamma.x(), gamma.y(), gamma.z());
 }
 
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
@@ -447,8 +435,8 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
   validate(initial);
   validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0))
-    throw InvalidInput("--horizon", "must be a finite number >= 0");
-  if (std::isnan(stop_above)) throw InvalidInput("--max-tilt", "must be a number");
+    throw InvalidInput("horizon", "must be a finite number >= 0");
+  if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
   const State x0 = to_state(initial_rigid_body_state(initial));
   return body.A == body.B ? scan_tilt<true>(body, x0, horizon, stop_above, options, summary)
                           : scan_tilt<false>(body, x0, horizon, stop_above, options, summary);

@@ -10,11 +10,11 @@
 
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
-#include "rigid_body_common.hpp"
+#include "detail/integration.hpp"
 
 namespace heavytop {
 
-using namespace internal;
+using namespace detail;
 
 namespace {
 
@@ -127,8 +127,7 @@ inline void step(const Flows& f, State& x, double h, int order) {
 }
 
 State to_state(const Body& body, const RigidBodyState& rb) {
-  Eigen::Quaterniond q(rb.attitude);
-  q.normalize();
+  const Eigen::Quaterniond q = unit_quaternion(rb.attitude);
   return {q.w(), q.x(), q.y(), q.z(), body.A * rb.omega.x(), body.B * rb.omega.y(),
           body.C * rb.omega.z()};
 }
@@ -141,9 +140,9 @@ RigidBodyState to_rigid_body(const Body& body, const State& x) {
 }
 
 Violation first_violation(const SplittingOptions& o) {
-  if (!(std::isfinite(o.step) && o.step > 0.0)) return std::pair{"--step", "must be finite and > 0"};
-  if (o.order != 2 && o.order != 4) return std::pair{"--order", "must be 2 or 4"};
-  if (o.max_steps == 0) return std::pair{"--max-steps", "must be > 0"};
+  if (!(std::isfinite(o.step) && o.step > 0.0)) return std::pair{"step", "must be finite and > 0"};
+  if (o.order != 2 && o.order != 4) return std::pair{"order", "must be 2 or 4"};
+  if (o.max_steps == 0) return std::pair{"max_steps", "must be > 0"};
   return std::nullopt;
 }
 
@@ -178,7 +177,7 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
   const double h = options.step;
   const double horizon = times.empty() ? 0.0 : times.back();
   if (horizon / h > static_cast<double>(options.max_steps))
-    throw InvalidInput("--step", fmt::format("too small: t = {:.6g} s would take more than "
+    throw InvalidInput("step", fmt::format("too small: t = {:.6g} s would take more than "
                                              "max_steps = {} steps",
                                              horizon, options.max_steps));
 

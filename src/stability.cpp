@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
+
+#include "detail/quadratic.hpp"
 
 namespace heavytop {
 namespace {
@@ -88,16 +91,6 @@ bool is_zero(const SpinPolynomial& p, double s) {
   return std::abs(p(s)) <= kCoincidence * p.magnitude(s);
 }
 
-/// The system matrix scaled by a frequency so its entries are of order one (a similarity
-/// transform, so it has the same Jordan structure, with eigenvalues divided by `rate`).
-Eigen::Matrix4d balanced_state_matrix(const LinearModel& m, double spin, double rate) {
-  const Eigen::Matrix2d m_inv = m.M.inverse();
-  Eigen::Matrix4d j;
-  j << Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Identity(),
-      -m_inv * m.K(spin) / (rate * rate), -m_inv * m.G(spin) / rate;
-  return j;
-}
-
 bool vanishes(const Eigen::Matrix4d& residual) {
   return residual.cwiseAbs().maxCoeff() <= kSemisimple;
 }
@@ -117,13 +110,8 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
   std::complex<double> mu1, mu2;
   if (double_root) {
     mu1 = mu2 = -a2 / (2.0 * a4);
-  } else if (disc < 0.0) {
-    mu1 = {-a2 / (2.0 * a4), std::sqrt(-disc) / (2.0 * a4)};
-    mu2 = std::conj(mu1);
   } else {
-    const double q = -0.5 * (a2 + std::copysign(std::sqrt(disc), a2));
-    mu1 = q / a4;
-    mu2 = q != 0.0 ? a0 / q : 0.0;
+    std::tie(mu1, mu2) = detail::quadratic_roots(a4, a2, a0, disc);
   }
   if (a0_zero) {  // exactly one root mu = 0 (or a double one when a2 vanishes too)
     if (double_root) mu1 = mu2 = 0.0;
@@ -154,7 +142,7 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
     v.reason = "all eigenvalues zero (a Jordan block): the axis drifts";
     return v;
   }
-  const Eigen::Matrix4d j = balanced_state_matrix(model, spin, rate);
+  const Eigen::Matrix4d j = state_matrix(model, spin, rate);
   const Eigen::Matrix4d id = Eigen::Matrix4d::Identity();
   if (double_root) {
     // lambda = +-i sqrt(-mu) each double: semisimple iff J^2 = mu I.
@@ -234,6 +222,17 @@ std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model) {
 std::optional<double> critical_spin(const std::vector<SpinInterval>& intervals) {
   if (intervals.empty() || intervals.back().hi) return std::nullopt;
   return intervals.back().lo;
+}
+
+std::vector<ModelStability> analyse_stability(const Body& body, double spin) {
+  std::vector<ModelStability> models;
+  for (LinearModelKind kind : kLinearModels) {
+    const LinearModel model = linear_model(kind, body);
+    auto intervals = stable_spin_intervals(model);
+    auto critical = critical_spin(intervals);
+    models.push_back({kind, linear_stability(model, spin), std::move(intervals), critical});
+  }
+  return models;
 }
 
 }  // namespace heavytop

@@ -1,6 +1,7 @@
 #include "heavytop/state.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "heavytop/body.hpp"
 
@@ -20,6 +21,28 @@ void validate(const InitialState& s) {
 
 void Trajectory::reserve(std::size_t n) {
   for (auto* column : {&t, &theta, &phi, &theta_rate, &phi_rate}) column->reserve(n);
+}
+
+std::vector<std::string> Trajectory::column_names() const {
+  std::vector<std::string> names(kTrajectoryColumns.begin(), kTrajectoryColumns.end());
+  for (const auto& [name, values] : extra) names.push_back(name);
+  return names;
+}
+
+const std::vector<double>& Trajectory::column(std::size_t index) const {
+  const std::vector<double>* base[] = {&t, &theta, &phi, &theta_rate, &phi_rate};
+  return index < kTrajectoryColumns.size() ? *base[index] : extra.at(index - kTrajectoryColumns.size()).second;
+}
+
+std::vector<double>& Trajectory::column(std::size_t index) {
+  return const_cast<std::vector<double>&>(std::as_const(*this).column(index));
+}
+
+void Trajectory::append(const Trajectory& other) {
+  if (extra.empty() && size() == 0)
+    for (const auto& [name, values] : other.extra) extra.emplace_back(name, std::vector<double>{});
+  for (std::size_t c = 0; c < kTrajectoryColumns.size() + other.extra.size(); ++c)
+    column(c).insert(column(c).end(), other.column(c).begin(), other.column(c).end());
 }
 
 std::vector<double> sample_times(double t_end, std::size_t n) {

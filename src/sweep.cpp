@@ -1,5 +1,7 @@
 #include "heavytop/sweep.hpp"
 
+#include "heavytop/frames.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <exception>
@@ -20,7 +22,7 @@ double parse_number(std::string_view text, const char* what) {
   double value = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-    throw InvalidInput("--vary", fmt::format("{} '{}' must be a finite number", what, text));
+    throw InvalidInput("vary", fmt::format("{} '{}' must be a finite number", what, text));
   return value;
 }
 
@@ -34,21 +36,21 @@ double SweepAxis::value(std::size_t i) const {
 SweepAxis parse_sweep_axis(std::string_view text) {
   const auto eq = text.find('=');
   const std::string_view rule = "must be KEY=START:STOP:COUNT with KEY one of A, B, C, mass, gravity, length, spin, B/A, C/A";
-  if (eq == std::string_view::npos) throw InvalidInput("--vary", std::string(rule));
+  if (eq == std::string_view::npos) throw InvalidInput("vary", std::string(rule));
   SweepAxis axis;
   axis.key = std::string(text.substr(0, eq));
   if (std::find(std::begin(kKeys), std::end(kKeys), axis.key) == std::end(kKeys))
-    throw InvalidInput("--vary", fmt::format("unknown key '{}': {}", axis.key, rule));
+    throw InvalidInput("vary", fmt::format("unknown key '{}': {}", axis.key, rule));
   const std::string_view range = text.substr(eq + 1);
   const auto c1 = range.find(':'), c2 = range.find(':', c1 == std::string_view::npos ? c1 : c1 + 1);
-  if (c1 == std::string_view::npos || c2 == std::string_view::npos) throw InvalidInput("--vary", std::string(rule));
+  if (c1 == std::string_view::npos || c2 == std::string_view::npos) throw InvalidInput("vary", std::string(rule));
   axis.start = parse_number(range.substr(0, c1), "START");
   axis.stop = parse_number(range.substr(c1 + 1, c2 - c1 - 1), "STOP");
   const std::string_view count = range.substr(c2 + 1);
   long long n = 0;
   const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), n);
   if (error != std::errc() || end != count.data() + count.size() || n < 1 || n > 100'000'000)
-    throw InvalidInput("--vary", fmt::format("COUNT '{}' must be an integer in [1, 100000000]", count));
+    throw InvalidInput("vary", fmt::format("COUNT '{}' must be an integer in [1, 100000000]", count));
   axis.count = static_cast<std::size_t>(n);
   return axis;
 }
@@ -59,13 +61,35 @@ std::size_t grid_size(const std::vector<SweepAxis>& axes) {
   return n;
 }
 
+std::vector<std::size_t> grid_indices(const std::vector<std::size_t>& counts, std::size_t index) {
+  std::vector<std::size_t> indices(counts.size());
+  for (std::size_t k = counts.size(); k-- > 0;) {
+    indices[k] = index % counts[k];
+    index /= counts[k];
+  }
+  return indices;
+}
+
+std::vector<double> grid_values(const std::vector<SweepAxis>& axes, std::size_t index) {
+  std::vector<std::size_t> counts;
+  for (const auto& a : axes) counts.push_back(a.count);
+  const auto indices = grid_indices(counts, index);
+  std::vector<double> values(axes.size());
+  for (std::size_t k = 0; k < axes.size(); ++k) values[k] = axes[k].value(indices[k]);
+  return values;
+}
+
+std::pair<double, double> realizable_ratio_range(const Body& body) {
+  return {std::abs(body.C - body.A) / body.A, (body.C + body.A) / body.A};
+}
+
 void apply_grid_point(const std::vector<SweepAxis>& axes, std::size_t index, Body& body,
                       InitialState& state) {
   const Body base = body;
+  const std::vector<double> values = grid_values(axes, index);
   for (std::size_t k = axes.size(); k-- > 0;) {
     const SweepAxis& a = axes[k];
-    const double v = a.value(index % a.count);
-    index /= a.count;
+    const double v = values[k];
     if (a.key == "A") body.A = v;
     else if (a.key == "B") body.B = v;
     else if (a.key == "C") body.C = v;
@@ -83,8 +107,8 @@ bool SweepOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (!(std::isfinite(horizon) && horizon > 0.0)) return fail("--horizon: must be finite and > 0");
-  if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI)) return fail("--max-tilt: must be in (0, pi] rad");
+  if (!(std::isfinite(horizon) && horizon > 0.0)) return fail("horizon: must be finite and > 0");
+  if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI)) return fail("max_tilt: must be in (0, pi] rad");
   return integrator.IsValid(why);
 }
 
@@ -96,7 +120,7 @@ void validate_sweep(const Body& base, const InitialState& base_state,
   }
   for (std::size_t i = 0; i < axes.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
-      if (axes[i].key == axes[j].key) throw InvalidInput("--vary", fmt::format("'{}' is varied twice", axes[i].key));
+      if (axes[i].key == axes[j].key) throw InvalidInput("vary", fmt::format("'{}' is varied twice", axes[i].key));
   // Every grid point is checked, before any output: cheap next to the analysis.
   const std::size_t n = grid_size(axes);
   for (std::size_t i = 0; i < n; ++i) {
@@ -108,20 +132,17 @@ void validate_sweep(const Body& base, const InitialState& base_state,
       validate(state);
     } catch (const InvalidInput& e) {
       std::string where;
-      for (std::size_t k = 0, index = i; k < axes.size(); ++k) {
-        std::size_t stride = 1;
-        for (std::size_t m = k + 1; m < axes.size(); ++m) stride *= axes[m].count;
-        where += fmt::format("{}{}={}", k ? ", " : "", axes[k].key, axes[k].value(index / stride % axes[k].count));
-      }
-      throw InvalidInput("--vary", fmt::format("at {} the body breaks {}: {}", where, e.key(), e.rule()));
+      const std::vector<double> values = grid_values(axes, i);
+      for (std::size_t k = 0; k < axes.size(); ++k) where += fmt::format("{}{}={}", k ? ", " : "", axes[k].key, values[k]);
+      throw InvalidInput("vary", fmt::format("at {} the body breaks {}: {}", where, e.key(), e.rule()));
     }
   }
   if (options.nonlinear) {
-    const double start_tilt = std::acos(std::cos(base_state.theta0) * std::cos(base_state.phi0));
+    const double start_tilt = tilt(base_state.theta0, base_state.phi0);
     if (start_tilt == 0.0 && base_state.theta_rate0 == 0.0 && base_state.phi_rate0 == 0.0)
       throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. --theta0 1e-3): the upright body never moves");
     if (start_tilt >= options.max_tilt)
-      throw InvalidInput("--max-tilt", "must exceed the initial tilt");
+      throw InvalidInput("max_tilt", "must exceed the initial tilt");
   }
 }
 

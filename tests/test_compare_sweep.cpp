@@ -107,7 +107,7 @@ TEST(Sweep, BadGridsAreRefusedNamingVary) {
       validate_sweep(base, InitialState{}, {parse_sweep_axis(text)}, SweepOptions{});
       FAIL() << text;
     } catch (const InvalidInput& e) {
-      EXPECT_EQ(e.key(), "--vary") << e.what();
+      EXPECT_EQ(e.key(), "vary") << e.what();
     }
   }
   for (const char* text : {"D=0:1:3", "spin=0:1", "spin=0:1:0", "spin=a:1:3", "spin=0:1:3.5"})

@@ -225,18 +225,18 @@ TEST(Splitting, RefusesBadOptions) {
   for (double step : {0.0, -1e-3, std::nan(""), HUGE_VAL}) {
     options.step = step;
     EXPECT_FALSE(options.IsValid(&why));
-    EXPECT_EQ(why, "--step: must be finite and > 0");
+    EXPECT_EQ(why, "step: must be finite and > 0");
     try {
       simulate_splitting(kTop, kStart, {0.0, 1.0}, options);
       FAIL() << "accepted step " << step;
     } catch (const InvalidInput& e) {
-      EXPECT_EQ(e.key(), "--step");
+      EXPECT_EQ(e.key(), "step");
     }
   }
   options = SplittingOptions{};
   options.order = 3;
   EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_EQ(why, "--order: must be 2 or 4");
+  EXPECT_EQ(why, "order: must be 2 or 4");
   options = SplittingOptions{};
   options.step = 1e-12;  // 1e12 steps for 1 s
   EXPECT_THROW(simulate_splitting(kTop, kStart, {0.0, 1.0}, options), InvalidInput);

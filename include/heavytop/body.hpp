@@ -35,6 +35,23 @@ struct Body {
   double mgR() const noexcept { return mass * gravity * length; }
 };
 
+/// |A - B| / max(A, B) at or below which a body counts as symmetric (dimensionless); the same
+/// slack validate() allows the triangle inequalities, so rounding in user-computed moments
+/// (0.1 + 0.2 against 0.3) neither refuses a flat body nor makes a symmetric one asymmetric.
+inline constexpr double kSymmetryTolerance = 1e-12;
+
+/// True if A and B agree to kSymmetryTolerance relative: a dynamically symmetric body
+/// (the Lagrange top), for which the paper's model (4) is the exact linearisation.
+bool is_symmetric(const Body& body) noexcept;
+
+/// True if A + B = C to kSymmetryTolerance relative: all the mass lies in the plane z = 0, so
+/// a centre of mass off O (length != 0) makes the body an idealisation (erratum E0).
+bool is_planar(const Body& body) noexcept;
+
+/// s, the time scale of gravity, sqrt(min(A, B) / |m g R|) (a fall's e-folding time at zero
+/// spin); +inf when m g R = 0.
+double gravity_time(const Body& body) noexcept;
+
 /// Throws InvalidInput for the first rule of SPEC section 1 that `body` breaks:
 /// A, B, C, mass finite and > 0; gravity finite and >= 0; length finite;
 /// the triangle inequalities A + B >= C, B + C >= A, C + A >= B.

@@ -42,6 +42,10 @@ struct Comparison {
   std::vector<ModelComparison> models;  ///< in SPEC order
 };
 
+/// s, a horizon that shows a few precession periods and tens of nutation loops of `body` at
+/// spin w0 (rad/s) when model (4) is stable there, else 20 gravity times (10 s without gravity).
+double natural_horizon(const Body& body, double spin);
+
 /// Runs every model from `state` at `times` (s) and compares it with `nonlinear`.
 Comparison compare_models(const Body& body, const InitialState& state,
                           const std::vector<double>& times, const NonlinearOptions& options = {});

@@ -29,6 +29,9 @@ Eigen::Vector3d axis_frame_rate(double phi, double theta, double phi_rate, doubl
 /// Exact inverse of k = (sin theta cos phi, -sin phi, cos theta cos phi).
 AxisAngles axis_angles(const Eigen::Vector3d& k, const Eigen::Vector3d& k_rate);
 
+/// rad, the tilt of the axis from the upward vertical, acos(k_zeta) = acos(cos theta cos phi).
+double tilt(double theta, double phi);
+
 /// The body's attitude and angular velocity at t = 0 for `linearized` and `nonlinear`
 /// (SPEC section 2): principal axes x, y, z are the columns of Q(phi0, theta0) (psi = 0),
 /// angular velocity phi_rate0 (cos theta0, 0, -sin theta0) + theta_rate0 (0, 1, 0) + spin k0.

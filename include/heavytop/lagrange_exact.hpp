@@ -27,12 +27,8 @@
 
 namespace heavytop {
 
-/// |A - B| / max(A, B) at or below which a body counts as symmetric (dimensionless); the same
-/// slack validate() allows the triangle inequalities. The transverse moment used is (A + B)/2.
-inline constexpr double kSymmetryTolerance = 1e-12;
-
-/// Throws InvalidInput for a body validate() refuses, and InvalidInput("body.B", ...) when
-/// A and B differ by more than kSymmetryTolerance relative.
+/// Throws InvalidInput for a body validate() refuses, and InvalidInput("body.B", ...) unless
+/// is_symmetric(body). The transverse moment used is (A + B)/2.
 void validate_symmetric(const Body& body);
 
 /// The precomputed closed-form motion of one symmetric body from one state. Build it with

@@ -53,8 +53,11 @@ struct LinearModel {
 /// The model `kind` of `body` (which should satisfy validate()).
 LinearModel linear_model(LinearModelKind kind, const Body& body);
 
-/// 1/s, the first-order system matrix J of x = (q1, q2, q1', q2'): x' = J x.
-Eigen::Matrix4d state_matrix(const LinearModel& model, double spin);
+/// 1/s, the first-order system matrix J of x = (q1, q2, q1', q2'): x' = J x (rate = 1).
+/// With a frequency `rate` (rad/s) it is the matrix of (q, q'/rate) in the time rate t, a
+/// dimensionless similarity transform of J / rate (same Jordan structure, eigenvalues divided
+/// by rate) whose entries are of order one when rate is the problem's frequency scale.
+Eigen::Matrix4d state_matrix(const LinearModel& model, double spin, double rate = 1.0);
 
 /// The characteristic polynomial det(M l^2 + G l + K) = a4 l^4 + a2 l^2 + a0 (odd powers
 /// vanish for every model here). Units: a4 kg^2 m^4, a2 kg^2 m^4/s^2, a0 kg^2 m^4/s^4.

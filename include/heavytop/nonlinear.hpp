@@ -37,11 +37,11 @@ struct NonlinearOptions {
   std::function<void(double)> progress;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a
-  /// one-line "key: rule" message (key "--rtol", "--atol" or "--max-steps").
+  /// one-line "key: rule" message (key "rtol", "atol" or "max_steps").
   bool IsValid(std::string* why) const;
 };
 
-/// Throws InvalidInput (key "--rtol", "--atol" or "--max-steps") unless options.IsValid().
+/// Throws InvalidInput (key "rtol", "atol" or "max_steps") unless options.IsValid().
 void validate(const NonlinearOptions& options);
 
 /// What one run of the integrator did.
@@ -98,10 +98,10 @@ struct TiltExtremes {
   bool exceeded = false;   ///< true if the scan stopped early because max_tilt > stop_above
 };
 
-/// The extremes of the tilt over [0, horizon] (s, finite, >= 0; key "--horizon"). Interior
+/// The extremes of the tilt over [0, horizon] (s, finite, >= 0; key "horizon"). Interior
 /// extrema are located on the dense output by a root of d(k_zeta)/dt, so they are as exact
 /// as the integration. Stops at the first point where the tilt exceeds `stop_above` (rad;
-/// not NaN; key "--max-tilt"); then max_tilt is that point's tilt, a lower bound of the true
+/// not NaN; key "max_tilt"); then max_tilt is that point's tilt, a lower bound of the true
 /// maximum. Throws like simulate_nonlinear.
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                            double stop_above = std::numeric_limits<double>::infinity(),

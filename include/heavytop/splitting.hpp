@@ -36,11 +36,11 @@ struct SplittingOptions {
   std::size_t max_steps = 1'000'000'000;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a
-  /// one-line "key: rule" message (key "--step", "--order" or "--max-steps").
+  /// one-line "key: rule" message (key "step", "order" or "max_steps").
   bool IsValid(std::string* why) const;
 };
 
-/// Throws InvalidInput (key "--step", "--order" or "--max-steps") unless options.IsValid().
+/// Throws InvalidInput (key "step", "order" or "max_steps") unless options.IsValid().
 void validate(const SplittingOptions& options);
 
 /// What one run of the splitting integrator did.

@@ -45,4 +45,16 @@ std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model);
 /// no spin stabilises the model.
 std::optional<double> critical_spin(const std::vector<SpinInterval>& intervals);
 
+/// One linear model's stability: its verdict at a spin and the spins at which it is stable.
+struct ModelStability {
+  LinearModelKind kind = LinearModelKind::FirstOrder;
+  StabilityVerdict verdict;              ///< at the spin asked
+  std::vector<SpinInterval> intervals;   ///< rad/s, stable_spin_intervals()
+  std::optional<double> critical;        ///< rad/s, critical_spin(intervals)
+};
+
+/// Every linear model of `body` (kLinearModels order) at spin w0 (rad/s): what `heavytop
+/// stability` reports.
+std::vector<ModelStability> analyse_stability(const Body& body, double spin);
+
 }  // namespace heavytop

@@ -2,7 +2,9 @@
 /// \file
 /// The user's initial state and the reported motion (SPEC section 2).
 
+#include <array>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -36,7 +38,18 @@ struct Trajectory {
 
   std::size_t size() const noexcept { return t.size(); }
   void reserve(std::size_t n);
+  /// The column names, SPEC's five (kTrajectoryColumns) then the extra ones, in order.
+  std::vector<std::string> column_names() const;
+  /// Column `index` in column_names() order (index < 5 + extra.size()).
+  const std::vector<double>& column(std::size_t index) const;
+  std::vector<double>& column(std::size_t index);
+  /// Appends the samples of `other`, which has the same columns.
+  void append(const Trajectory& other);
 };
+
+/// The five columns every trajectory has, in SPEC order (section 5, `simulate`).
+inline constexpr std::array<std::string_view, 5> kTrajectoryColumns = {"t", "theta", "phi", "theta_rate",
+                                                                        "phi_rate"};
 
 /// n sample times t_i = i t_end / (n - 1), i = 0..n-1 (t = {0} when n == 1). s.
 std::vector<double> sample_times(double t_end, std::size_t n);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "heavytop/body.hpp"
@@ -27,11 +28,22 @@ struct SweepAxis {
   double value(std::size_t i) const;
 };
 
-/// Parses "KEY=START:STOP:COUNT". Throws InvalidInput (key "--vary") naming the rule broken.
+/// Parses "KEY=START:STOP:COUNT". Throws InvalidInput (key "vary") naming the rule broken.
 SweepAxis parse_sweep_axis(std::string_view text);
 
 /// The number of grid points: the product of the axes' counts.
 std::size_t grid_size(const std::vector<SweepAxis>& axes);
+
+/// The index along each axis of grid point `index` of a grid with these counts (row-major,
+/// the first axis slowest).
+std::vector<std::size_t> grid_indices(const std::vector<std::size_t>& counts, std::size_t index);
+
+/// The value of each axis at grid point `index` (row-major, the first axis slowest).
+std::vector<double> grid_values(const std::vector<SweepAxis>& axes, std::size_t index);
+
+/// The values B/A takes for a real body with A and C held: |C - A| / A to (C + A) / A (the
+/// triangle inequalities of the moments).
+std::pair<double, double> realizable_ratio_range(const Body& body);
 
 /// The body and state at grid point `index` (row-major, the first axis slowest). A ratio
 /// B/A or C/A changes the numerator and holds the denominator at its base value.
@@ -56,7 +68,7 @@ struct SweepVerdict {
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
 };
 
-/// Throws InvalidInput (key "--vary", naming the grid point) unless every grid point gives a
+/// Throws InvalidInput (key "vary", naming the grid point) unless every grid point gives a
 /// valid body and state, and, with options.nonlinear, the start is tilted (else the upright
 /// body never moves) by less than max_tilt.
 void validate_sweep(const Body& base, const InitialState& base_state,

@@ -1,6 +1,7 @@
 #pragma once
-// Figures in PNG and SVG, drawn by gnuplot (a maintained plotting program from Debian's
-// packages; no plot rendering here): this file only writes the data and the gnuplot script.
+/// \file
+/// Figures in PNG and SVG, drawn by gnuplot (a maintained plotting program from Debian's
+/// packages; no plot rendering here): this file only writes the data and the gnuplot script.
 
 #include <string>
 #include <vector>
@@ -8,7 +9,7 @@
 #include "heavytop/compare.hpp"
 #include "heavytop/sweep.hpp"
 
-namespace heavytop::cli {
+namespace heavytop::report {
 
 /// The files a figure was written to (both beside each other in the output folder).
 struct Figure {
@@ -27,4 +28,4 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
 Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
                       const std::vector<SweepVerdict>& verdicts);
 
-}  // namespace heavytop::cli
+}  // namespace heavytop::report

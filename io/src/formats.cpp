@@ -1,6 +1,4 @@
-// The text, JSON and CSV forms of the results, shared by the commands, the report and the
-// Python bindings (so that every route prints the same thing).
-#include "formats.hpp"
+#include "heavytop/io/formats.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -8,34 +6,26 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-namespace heavytop::cli {
+namespace heavytop::io {
 namespace {
 
 using Json = nlohmann::ordered_json;
 
 Json optional_number(const std::optional<double>& x) { return x ? Json(*x) : Json(nullptr); }
 
-}  // namespace
-
-std::vector<ModelReport> analyse(const Body& body, double spin) {
-  std::vector<ModelReport> reports;
-  for (LinearModelKind kind : kLinearModels) {
-    const LinearModel model = linear_model(kind, body);
-    auto intervals = stable_spin_intervals(model);
-    auto critical = critical_spin(intervals);
-    reports.push_back({kind, linear_stability(model, spin), std::move(intervals), critical});
-  }
-  return reports;
+/// The "body" object of every JSON output.
+Json body_json(const Body& b) {
+  return {{"A", b.A}, {"B", b.B}, {"C", b.C}, {"mass", b.mass}, {"gravity", b.gravity}, {"length", b.length}};
 }
 
-std::string stability_json(const Body& body, double spin, const std::vector<ModelReport>& reports) {
+}  // namespace
+
+std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models) {
   Json out;
-  out["body"] = {{"A", body.A},       {"B", body.B},
-                 {"C", body.C},       {"mass", body.mass},
-                 {"gravity", body.gravity}, {"length", body.length}};
+  out["body"] = body_json(body);
   out["spin"] = spin;
-  Json models = Json::object();
-  for (const auto& r : reports) {
+  Json by_name = Json::object();
+  for (const auto& r : models) {
     Json m;
     m["stable"] = r.verdict.stable;
     m["critical_spin"] = optional_number(r.critical);
@@ -46,9 +36,9 @@ std::string stability_json(const Body& body, double spin, const std::vector<Mode
     for (const auto& l : r.verdict.eigenvalues) m["eigenvalues"].push_back({l.real(), l.imag()});
     if (r.verdict.stable) m["frequencies"] = r.verdict.frequencies;
     m["reason"] = r.verdict.reason;
-    models[std::string(name(r.kind))] = m;
+    by_name[std::string(name(r.kind))] = m;
   }
-  out["models"] = models;
+  out["models"] = by_name;
   return out.dump(2) + "\n";
 }
 
@@ -64,7 +54,7 @@ std::string intervals_text(const std::vector<SpinInterval>& intervals) {
   return text;
 }
 
-std::string stability_text(const Body& body, double spin, const std::vector<ModelReport>& reports) {
+std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models) {
   std::ostringstream out;
   out << fmt::format("Body: A = {:g}, B = {:g}, C = {:g} kg m^2; m g R = {:g} N m ({})\n", body.A,
                      body.B, body.C, body.mgR(),
@@ -73,7 +63,7 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   out << fmt::format("Spin: w0 = {:g} rad/s ({:.0f} rpm)\n\n", spin, spin * 30.0 / M_PI);
   out << fmt::format("{:<13} {:<9} {:>16}  {:<28} {}\n", "model", "verdict", "critical rad/s",
                      "stable spins (rad/s)", "why");
-  for (const auto& r : reports) {
+  for (const auto& r : models) {
     out << fmt::format("{:<13} {:<9} {:>16}  {:<28} {}\n", name(r.kind),
                        r.verdict.stable ? "stable" : "UNSTABLE",
                        r.critical ? fmt::format("{:.6g}", *r.critical) : "none",
@@ -81,8 +71,8 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   }
   out << "\n(first-order: the paper's model (4), (9); body-fixed: its model (5), which the paper "
          "itself calls erroneous; linearized: the exact linearisation, the one to trust.)\n";
-  const auto& paper = reports[0];
-  const auto& truth = reports[2];
+  const auto& paper = models[0];
+  const auto& truth = models[2];
   if (paper.verdict.stable != truth.verdict.stable) {
     out << fmt::format(
         "\nWARNING: the paper's model (4) says {} at this spin, but the exact linearisation says "
@@ -97,7 +87,7 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
         paper.critical ? fmt::format("{:.6g} rad/s", *paper.critical) : "none",
         truth.critical ? fmt::format("{:.6g} rad/s", *truth.critical) : "none (no spin stabilises it)");
   }
-  if (std::abs(body.A - body.B) <= 1e-12 * std::max(body.A, body.B) && body.mgR() > 0)
+  if (is_symmetric(body) && body.mgR() > 0)
     out << "\nSymmetric top: the classical sleeping-top criterion C^2 w0^2 > 4 A m g R applies "
            "(strictly: at equality the motion grows, erratum E2).\n";
   return out.str();
@@ -109,27 +99,44 @@ std::string number(double value) {
   return fmt::format("{}", value);
 }
 
-std::vector<std::string> trajectory_columns(const Trajectory& tr) {
-  std::vector<std::string> names{"t", "theta", "phi", "theta_rate", "phi_rate"};
-  for (const auto& [name, values] : tr.extra) names.push_back(name);
-  return names;
-}
-const std::vector<double>& trajectory_column(const Trajectory& tr, std::size_t i) {
-  const std::vector<double>* base[] = {&tr.t, &tr.theta, &tr.phi, &tr.theta_rate, &tr.phi_rate};
-  return i < 5 ? *base[i] : tr.extra[i - 5].second;
+std::string trajectory_csv_header(const Trajectory& tr) {
+  const auto names = tr.column_names();
+  std::string head;
+  for (std::size_t c = 0; c < names.size(); ++c) head += (c ? "," : "") + names[c];
+  return head + "\n";
 }
 
-std::string trajectory_csv(const Trajectory& tr) {
-  const auto names = trajectory_columns(tr);
+std::string trajectory_csv_rows(const Trajectory& tr, std::size_t begin, std::size_t end) {
+  const std::size_t columns = kTrajectoryColumns.size() + tr.extra.size();
   fmt::memory_buffer out;
-  for (std::size_t c = 0; c < names.size(); ++c) fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", names[c]);
-  out.push_back('\n');
-  for (std::size_t i = 0; i < tr.size(); ++i) {
-    for (std::size_t c = 0; c < names.size(); ++c)
-      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", trajectory_column(tr, c)[i] + 0.0);
+  for (std::size_t i = begin; i < end; ++i) {
+    for (std::size_t c = 0; c < columns; ++c)
+      fmt::format_to(std::back_inserter(out), "{}{}", c ? "," : "", tr.column(c)[i] + 0.0);
     out.push_back('\n');
   }
   return fmt::to_string(out);
+}
+
+std::string trajectory_csv(const Trajectory& tr) { return trajectory_csv_header(tr) + trajectory_csv_rows(tr, 0, tr.size()); }
+
+std::string trajectory_json(Model model, const Body& body, const InitialState& s, const Trajectory& tr,
+                            const NonlinearSummary* summary) {
+  Json out;
+  out["model"] = std::string(name(model));
+  out["body"] = body_json(body);
+  out["motion"] = {{"spin", s.spin}, {"theta0", s.theta0}, {"phi0", s.phi0},
+                   {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}};
+  const auto names = tr.column_names();
+  out["columns"] = names;
+  for (std::size_t c = 0; c < names.size(); ++c) out[names[c]] = tr.column(c);
+  if (summary) {
+    out["summary"] = {{"steps", summary->steps},
+                      {"rejected_steps", summary->rejected_steps},
+                      {"rhs_evaluations", summary->rhs_evaluations},
+                      {"max_relative_energy_drift", summary->max_relative_energy_drift},
+                      {"max_relative_vertical_momentum_drift", summary->max_relative_vertical_momentum_drift}};
+  }
+  return out.dump() + "\n";
 }
 
 
@@ -194,12 +201,7 @@ std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear)
 std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& verdicts) {
   fmt::memory_buffer out;
   for (std::size_t r = 0; r < verdicts.size(); ++r) {
-    std::size_t index = begin + r, stride = 1;
-    for (const auto& a : axes) stride *= a.count;
-    for (const auto& a : axes) {
-      stride /= a.count;
-      fmt::format_to(std::back_inserter(out), "{},", a.value(index / stride % a.count));
-    }
+    for (double value : grid_values(axes, begin + r)) fmt::format_to(std::back_inserter(out), "{},", value);
     const auto& v = verdicts[r];
     fmt::format_to(std::back_inserter(out), "{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]));
     if (v.nonlinear) fmt::format_to(std::back_inserter(out), ",{}", int(*v.nonlinear));
@@ -208,4 +210,4 @@ std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin
   return fmt::to_string(out);
 }
 
-}  // namespace heavytop::cli
+}  // namespace heavytop::io

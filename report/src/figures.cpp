@@ -1,4 +1,4 @@
-#include "figures.hpp"
+#include "heavytop/report/figures.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -11,12 +11,14 @@
 
 #include <fmt/format.h>
 
-#include "common.hpp"
+#include "heavytop/io/output.hpp"
 #include "heavytop/stability.hpp"
 
 extern char** environ;
 
-namespace heavytop::cli {
+namespace heavytop::report {
+using io::Failure;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -182,7 +184,7 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
 Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state) {
   Scratch scratch;
   // B/A over every value a real body allows with A and C held, |C - A| <= B <= C + A.
-  const double lo = std::abs(body.C - body.A) / body.A, hi = (body.C + body.A) / body.A;
+  const auto [lo, hi] = realizable_ratio_range(body);
   const int n = 300;
   double top = std::abs(state.spin);
   std::map<std::string, std::ofstream> ends;
@@ -210,13 +212,15 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
   SweepOptions options;
   options.nonlinear = true;
   options.max_tilt = 0.5;
-  const double scale = std::abs(body.mgR()) > 0.0 ? std::sqrt(std::min(body.A, body.B) / std::abs(body.mgR())) : 1.0;
+  const double scale = std::isfinite(gravity_time(body)) ? gravity_time(body) : 1.0;
   options.horizon = 300.0 * scale;
   options.integrator.rtol = options.integrator.atol = 1e-8;
   std::ofstream up(scratch.file("up.dat")), falls(scratch.file("falls.dat"));
   const auto verdicts = sweep_verdicts(body, start, axes, options, 0, grid_size(axes));
-  for (std::size_t i = 0; i < verdicts.size(); ++i)
-    (*verdicts[i].nonlinear ? up : falls) << fmt::format("{} {}\n", axes[0].value(i / 15), axes[1].value(i % 15));
+  for (std::size_t i = 0; i < verdicts.size(); ++i) {
+    const auto point = grid_values(axes, i);
+    (*verdicts[i].nonlinear ? up : falls) << fmt::format("{} {}\n", point[0], point[1]);
+  }
   up.close();
   falls.close();
 
@@ -249,7 +253,8 @@ Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes
     for (std::size_t i = 0; i < verdicts.size(); ++i) {
       // 0 neither, 1 only (4) (a false promise), 2 only the linearisation ((9) too strict), 3 both.
       const int category = int(verdicts[i].linear[0]) + 2 * int(verdicts[i].linear[2]);
-      out << fmt::format("{} {} {}\n", axes[0].value(i / axes[1].count), axes[1].value(i % axes[1].count), category);
+      const auto point = grid_values(axes, i);
+      out << fmt::format("{} {} {}\n", point[0], point[1], category);
       if ((i + 1) % axes[1].count == 0) out << "\n";
     }
   }
@@ -274,4 +279,4 @@ Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes
                 plot, scratch, 1500, 950);
 }
 
-}  // namespace heavytop::cli
+}  // namespace heavytop::report

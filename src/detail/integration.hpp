@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "heavytop/body.hpp"
@@ -20,7 +21,7 @@
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/state.hpp"
 
-namespace heavytop::internal {
+namespace heavytop::detail {
 
 // ---- Options ----------------------------------------------------------------------------------
 
@@ -90,6 +91,26 @@ std::string drift_report(const Summary& s) {
       s.max_relative_axial_momentum_drift, s.symmetric ? "" : " (not conserved: A != B)");
 }
 
+// ---- The first integrals and the attitude --------------------------------------------------------
+
+// E, L_zeta and C w3 from the angular velocity w and the upward vertical gamma = R^T e_zeta,
+// both in body axes: the one formula behind conserved_quantities() and the integrators' monitors.
+inline ConservedQuantities conserved_from(const Body& body, double w1, double w2, double w3, double g1,
+                                          double g2, double g3) {
+  ConservedQuantities q;
+  q.energy = 0.5 * (body.A * w1 * w1 + body.B * w2 * w2 + body.C * w3 * w3) + body.mgR() * g3;
+  q.vertical_momentum = body.A * w1 * g1 + body.B * w2 * g2 + body.C * w3 * g3;
+  q.axial_momentum = body.C * w3;
+  return q;
+}
+
+// The unit quaternion of a rotation matrix (body-to-fixed attitude).
+inline Eigen::Quaterniond unit_quaternion(const Eigen::Matrix3d& attitude) {
+  Eigen::Quaterniond q(attitude);
+  q.normalize();
+  return q;
+}
+
 // ---- Output -----------------------------------------------------------------------------------
 
 // SPEC section 2's angles of a rigid-body state: k = R e3, k' = R (w x e3) = w2 R e1 - w1 R e2.
@@ -129,4 +150,4 @@ inline void push_conserved(Trajectory& out, const ConservedQuantities& q,
   for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
 }
 
-}  // namespace heavytop::internal
+}  // namespace heavytop::detail

@@ -1,0 +1,114 @@
+#pragma once
+/// \file
+/// One entry point for the motion of every model: simulate(model, body, state, times, options)
+/// returns the trajectory and a summary of what the solver did (Ceres-style: a termination
+/// status and a message instead of a half-filled result before a throw).
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/linear_models.hpp"
+#include "heavytop/linear_motion.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/splitting.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// Every model of the heavy top (SPEC section 3).
+enum class Model {
+  FirstOrder,     ///< the paper's model (4): linear, constant spin
+  BodyFixed,      ///< the paper's model (5): linear, constant spin
+  Linearized,     ///< the exact linearisation about the upright permanent rotation
+  Nonlinear,      ///< the full rigid body, integrated numerically
+  LagrangeExact,  ///< the symmetric body's (A = B) nonlinear motion in closed form
+};
+
+/// Every model, in SPEC order.
+inline constexpr std::array<Model, 5> kModels = {Model::FirstOrder, Model::BodyFixed, Model::Linearized,
+                                                 Model::Nonlinear, Model::LagrangeExact};
+
+/// SPEC name of a model: "first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact".
+std::string_view name(Model model);
+/// The model called `name` in SPEC, or nullopt.
+std::optional<Model> model_from_name(std::string_view name);
+/// The SPEC names of every model joined by `separator` (for messages and help).
+std::string model_names(std::string_view separator);
+/// The linear model behind `model`, or nullopt for Nonlinear and LagrangeExact.
+std::optional<LinearModelKind> linear_kind(Model model);
+/// The Model of a linear model.
+Model model_of(LinearModelKind kind);
+
+/// How the `nonlinear` model is integrated.
+enum class Integrator {
+  Adaptive,   ///< Dormand-Prince 5(4) with error control and dense output (nonlinear.hpp)
+  Splitting,  ///< fixed-step structure-preserving splitting (splitting.hpp)
+};
+std::string_view name(Integrator integrator);  ///< "adaptive" | "splitting"
+std::optional<Integrator> integrator_from_name(std::string_view name);
+
+/// Settings of simulate(); each applies to the models named.
+struct SimulateOptions {
+  LinearMethod method = LinearMethod::Analytic;  ///< first-order, body-fixed, linearized
+  Integrator integrator = Integrator::Adaptive;  ///< nonlinear
+  NonlinearOptions adaptive;                     ///< nonlinear with Integrator::Adaptive
+  SplittingOptions splitting;                    ///< nonlinear with Integrator::Splitting
+  /// Called with the simulated time (s) as the work proceeds, if set; may throw to stop it.
+  std::function<void(double)> progress;
+
+  /// True if every setting is in range; else false with a one-line "key: rule" in `why`
+  /// (key "rtol", "atol", "step", "order" or "max_steps").
+  bool IsValid(std::string* why) const;
+};
+
+/// How a simulation ended.
+enum class Termination {
+  Success,  ///< every sample computed
+  Failure,  ///< a numerical failure (the solver could not go on); `message` says where and why
+};
+
+/// What simulate() did: the solver, its work, and the drift of the first integrals.
+struct SimulationSummary {
+  Model model = Model::Nonlinear;
+  std::string solver;                ///< e.g. "closed form", "Dormand-Prince 5(4)", "splitting, order 4"
+  Termination termination = Termination::Success;
+  std::string message;               ///< one line: why it failed, or empty
+  std::size_t samples = 0;           ///< samples computed
+  std::size_t steps = 0;             ///< integrator steps (0 for closed forms)
+  std::size_t rejected_steps = 0;    ///< steps rejected by the error control
+  std::size_t rhs_evaluations = 0;   ///< evaluations of the equations of motion (kicks for the splitting)
+  /// Relative drifts of E, L_zeta and C w3 over the run (NonlinearSummary's definitions);
+  /// nullopt for models that do not monitor them.
+  std::optional<double> max_relative_energy_drift;
+  std::optional<double> max_relative_vertical_momentum_drift;
+  std::optional<double> max_relative_axial_momentum_drift;
+
+  bool ok() const noexcept { return termination == Termination::Success; }
+  /// One line for people.
+  std::string BriefReport() const;
+};
+
+/// A trajectory and how it was computed.
+struct Simulation {
+  Trajectory trajectory;      ///< every sample on Success; those computed before a Failure
+  SimulationSummary summary;
+  /// The adaptive integrator's own summary (nonlinear with Integrator::Adaptive), for the
+  /// JSON `summary` object.
+  std::optional<NonlinearSummary> adaptive;
+};
+
+/// The motion of `model` for `body` from `initial` (SPEC section 2 mapping) at `times` (s;
+/// finite, >= 0, non-decreasing). Columns theta, phi, theta_rate, phi_rate for every model;
+/// the nonlinear integrators add the conserved quantities (nonlinear.hpp). Throws
+/// InvalidInput for bad input (the body, the state, the options; LagrangeExact needs A = B);
+/// a numerical failure is reported in the summary (Termination::Failure), not thrown.
+Simulation simulate(Model model, const Body& body, const InitialState& initial,
+                    const std::vector<double>& times, const SimulateOptions& options = {});
+
+}  // namespace heavytop

@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// The configuration file (TOML, SPEC section 4): [body], [motion], and the sections that
+/// commands add for their own settings (every command accepts every one of them, so one file
+/// serves all).
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop::io {
+
+/// The keys of [body] and [motion], as "section.name" (SPEC sections 1, 2, 4), in SPEC order.
+const std::vector<std::string>& body_keys();
+const std::vector<std::string>& motion_keys();
+/// The [body] keys a configuration must give (all but gravity).
+const std::vector<std::string>& required_body_keys();
+
+/// The field of `body` or `state` a "body.*" / "motion.*" key names (SI units); nullptr for
+/// any other key.
+double* config_field(Body& body, InitialState& state, std::string_view key);
+
+/// The further sections a configuration may hold, with their keys: {"simulate": {"model", ...}}.
+const std::map<std::string, std::vector<std::string>>& command_sections();
+
+/// A value of a further section, as TOML typed it.
+using SettingValue = std::variant<std::int64_t, double, bool, std::string>;
+
+/// A configuration file, read and checked against SPEC section 4.
+struct Configuration {
+  std::string path;                 ///< where it was read from
+  Body body;                        ///< the keys given; the others as Body{} (gravity 9.81)
+  InitialState motion;              ///< the keys given; the others 0
+  std::set<std::string> given;      ///< the body and motion keys the file gives ("body.A", ...)
+  bool has_body = false;            ///< the file has a [body] section
+  std::map<std::string, SettingValue> settings;  ///< further sections' values, "simulate.t_end"
+
+  /// A further section's number (an integer is read as a double); nullopt if absent.
+  /// Throws InvalidInput(key, "must be a number") for any other type.
+  std::optional<double> number(const std::string& key) const;
+  /// A further section's whole number; a float with a fraction or another type is refused.
+  std::optional<std::int64_t> integer(const std::string& key) const;
+  /// A further section's string; another type is refused.
+  std::optional<std::string> string(const std::string& key) const;
+};
+
+/// Reads `path`. Throws InvalidInput naming `path_key` (e.g. "--config") when the file cannot
+/// be read or is not TOML, and the offending "section.key" for an unknown section or key or a
+/// value of the wrong type. Does not check the body's rules (validate() does, once the
+/// command line's values are applied).
+Configuration read_configuration(const std::string& path, const std::string& path_key);
+
+}  // namespace heavytop::io

@@ -1,0 +1,46 @@
+#pragma once
+/// \file
+/// The text, JSON and CSV forms of every result (SPEC section 5), one place for each, shared
+/// by the command line, the report and the Python module so that every route prints the same.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heavytop/compare.hpp"
+#include "heavytop/simulate.hpp"
+#include "heavytop/stability.hpp"
+#include "heavytop/sweep.hpp"
+
+namespace heavytop::io {
+
+/// Stable spins for people: "[1.2, 3.4], above 5.6", "every spin" or "none" (rad/s).
+std::string intervals_text(const std::vector<SpinInterval>& intervals);
+std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models);
+std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models);
+
+/// A number as JSON/CSV prints it: the shortest form that reads back to the same double.
+std::string number(double value);
+
+/// SPEC's simulate CSV: the header t,theta,phi,theta_rate,phi_rate (then any extra columns)
+/// and one row per sample; trajectory_csv_rows() gives rows [begin, end) alone, for streaming.
+std::string trajectory_csv_header(const Trajectory& trajectory);
+std::string trajectory_csv_rows(const Trajectory& trajectory, std::size_t begin, std::size_t end);
+std::string trajectory_csv(const Trajectory& trajectory);
+
+/// `simulate --format json`: the model, body, motion, the columns by name, and the adaptive
+/// integrator's summary when given.
+std::string trajectory_json(Model model, const Body& body, const InitialState& state, const Trajectory& trajectory,
+                            const NonlinearSummary* summary);
+
+std::string comparison_json(const Comparison& comparison);
+std::string comparison_csv(const Comparison& comparison);
+std::string comparison_text(const Comparison& comparison, double t_end);
+
+/// The sweep's CSV: the header (varied keys, a column per linear model, `nonlinear` if asked)
+/// and the rows of grid points begin, begin + 1, ... with their verdicts.
+std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear);
+std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin,
+                           const std::vector<SweepVerdict>& verdicts);
+
+}  // namespace heavytop::io

@@ -1,0 +1,59 @@
+#pragma once
+/// \file
+/// Where results go: stdout, a device or pipe (written directly, never replaced), or a regular
+/// file (written to a unique temporary name in the same folder and renamed over the target,
+/// so a failure never leaves a partial file). SPEC section 1.
+
+#include <cstdio>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace heavytop::io {
+
+/// Internal or numerical failure of an output (exit status 1); bad input is InvalidInput.
+struct Failure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A stream to one output. `path` "" or "-" is stdout; a path that exists and is not a
+/// regular file (a device, a FIFO, a terminal) is opened and written directly; any other
+/// path gets a temporary file beside it, created with the mode the target would get (that
+/// of an existing file, else 0666 less the umask), which commit() renames over the target.
+/// Destroyed without commit(), the temporary file is removed and the target is untouched.
+/// `key` names the setting in messages ("--output" for the CLI).
+class OutputStream {
+ public:
+  OutputStream(std::string path, std::string key);
+  OutputStream(const OutputStream&) = delete;
+  OutputStream& operator=(const OutputStream&) = delete;
+  ~OutputStream();
+
+  /// Appends `text`. Throws Failure if it cannot be written.
+  void write(std::string_view text);
+  /// Flushes and, for a regular file, renames the temporary file over the target.
+  void commit();
+  /// True if writes go through a temporary file (the target is a regular file or absent).
+  bool atomic() const noexcept { return !temporary_.empty(); }
+  /// The path being written now: the temporary file's, else the target's ("" for stdout).
+  const std::string& writing_path() const noexcept { return atomic() ? temporary_ : path_; }
+
+ private:
+  std::string path_;
+  std::string key_;
+  std::string temporary_;
+  std::FILE* file_ = nullptr;
+  bool owns_file_ = false;
+  bool committed_ = false;
+};
+
+/// Writes `content` to `path` as OutputStream does, in one go.
+void write_output(const std::string& path, const std::string& content, const std::string& key = "--output");
+
+/// Writes a regular file through a temporary name and a rename; `fill` writes the content to
+/// the temporary path it is given (for files made by other programs, such as gnuplot).
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& fill,
+                      const std::string& key = "--output");
+
+}  // namespace heavytop::io

@@ -1,0 +1,148 @@
+#include "heavytop/io/config.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace heavytop::io {
+namespace {
+
+struct Field {
+  const char* key;
+  double Body::*body = nullptr;
+  double InitialState::*state = nullptr;
+};
+
+constexpr Field kFields[] = {
+    {"body.A", &Body::A},
+    {"body.B", &Body::B},
+    {"body.C", &Body::C},
+    {"body.mass", &Body::mass},
+    {"body.gravity", &Body::gravity},
+    {"body.length", &Body::length},
+    {"motion.spin", nullptr, &InitialState::spin},
+    {"motion.theta0", nullptr, &InitialState::theta0},
+    {"motion.phi0", nullptr, &InitialState::phi0},
+    {"motion.theta_rate0", nullptr, &InitialState::theta_rate0},
+    {"motion.phi_rate0", nullptr, &InitialState::phi_rate0},
+};
+
+std::vector<std::string> keys_starting(std::string_view prefix) {
+  std::vector<std::string> keys;
+  for (const Field& f : kFields)
+    if (std::string_view(f.key).starts_with(prefix)) keys.emplace_back(f.key);
+  return keys;
+}
+
+double number_of(const toml::node& node, const std::string& key) {
+  if (auto v = node.value_exact<double>()) return *v;
+  if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
+  throw InvalidInput(key, "must be a number");
+}
+
+}  // namespace
+
+const std::vector<std::string>& body_keys() {
+  static const auto keys = keys_starting("body.");
+  return keys;
+}
+const std::vector<std::string>& motion_keys() {
+  static const auto keys = keys_starting("motion.");
+  return keys;
+}
+const std::vector<std::string>& required_body_keys() {
+  static const std::vector<std::string> keys = {"body.A", "body.B", "body.C", "body.mass", "body.length"};
+  return keys;
+}
+
+double* config_field(Body& body, InitialState& state, std::string_view key) {
+  for (const Field& f : kFields)
+    if (key == f.key) return f.body ? &(body.*f.body) : &(state.*f.state);
+  return nullptr;
+}
+
+const std::map<std::string, std::vector<std::string>>& command_sections() {
+  static const std::map<std::string, std::vector<std::string>> sections = {
+      {"simulate", {"model", "t_end", "samples", "method", "rtol", "atol", "integrator", "step", "order"}},
+  };
+  return sections;
+}
+
+std::optional<double> Configuration::number(const std::string& key) const {
+  auto it = settings.find(key);
+  if (it == settings.end()) return std::nullopt;
+  if (auto* d = std::get_if<double>(&it->second)) return *d;
+  if (auto* i = std::get_if<std::int64_t>(&it->second)) return static_cast<double>(*i);
+  throw InvalidInput(key, "must be a number");
+}
+
+std::optional<std::int64_t> Configuration::integer(const std::string& key) const {
+  auto it = settings.find(key);
+  if (it == settings.end()) return std::nullopt;
+  if (auto* i = std::get_if<std::int64_t>(&it->second)) return *i;
+  if (auto* d = std::get_if<double>(&it->second); d && std::isfinite(*d) && *d == std::trunc(*d) &&
+                                                  std::abs(*d) < 9e15)
+    return static_cast<std::int64_t>(*d);
+  throw InvalidInput(key, "must be a whole number");
+}
+
+std::optional<std::string> Configuration::string(const std::string& key) const {
+  auto it = settings.find(key);
+  if (it == settings.end()) return std::nullopt;
+  if (auto* s = std::get_if<std::string>(&it->second)) return *s;
+  throw InvalidInput(key, "must be a string");
+}
+
+Configuration read_configuration(const std::string& path, const std::string& path_key) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InvalidInput(path_key, fmt::format("cannot read '{}': no such file", path));
+  if (fs::is_directory(path, ec)) throw InvalidInput(path_key, fmt::format("cannot read '{}': it is a folder", path));
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InvalidInput(path_key, fmt::format("cannot read '{}'", path));
+  toml::table table;
+  try {
+    table = toml::parse(text.str(), path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    throw InvalidInput(path_key, fmt::format("{}:{}:{}: malformed TOML: {}", path, where.line, where.column,
+                                             e.description()));
+  }
+  Configuration config;
+  config.path = path;
+  const auto& sections = command_sections();
+  for (const auto& [section_key, node] : table) {
+    const std::string section(section_key.str());
+    const bool known = section == "body" || section == "motion" || sections.count(section);
+    if (!known) throw InvalidInput(section, "unknown section in " + path);
+    const auto* sub = node.as_table();
+    if (!sub) throw InvalidInput(section, "must be a [section] table");
+    config.has_body = config.has_body || section == "body";
+    for (const auto& [name_key, value] : *sub) {
+      const std::string key = section + "." + std::string(name_key.str());
+      if (double* field = config_field(config.body, config.motion, key)) {
+        *field = number_of(value, key);
+        config.given.insert(key);
+        continue;
+      }
+      const auto it = sections.find(section);
+      if (it == sections.end() || std::find(it->second.begin(), it->second.end(), name_key.str()) == it->second.end())
+        throw InvalidInput(key, "unknown key in " + path);
+      if (auto s = value.value_exact<std::string>()) config.settings[key] = *s;
+      else if (auto i = value.value_exact<std::int64_t>()) config.settings[key] = *i;
+      else if (auto d = value.value_exact<double>()) config.settings[key] = *d;
+      else if (auto b = value.value_exact<bool>()) config.settings[key] = *b;
+      else throw InvalidInput(key, "must be a number or a string");
+    }
+  }
+  return config;
+}
+
+}  // namespace heavytop::io
