@@ -46,7 +46,6 @@ struct Options {
 
 // ---- expressions -------------------------------------------------------------------------
 
-std::string text(const ex& e) { return to_string(tidy(e), Style::Text); }
 std::string tex(const ex& e) { return to_string(tidy(e), Style::Latex); }
 // T, V and angular velocities read best expanded, term by term.
 std::string text_expanded(const ex& e) { return to_string(e.expand(), Style::Text); }

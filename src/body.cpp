@@ -45,6 +45,8 @@ void validate(const Body& body) {
   require_finite(body.gravity, "body.gravity");
   if (!(body.gravity >= 0.0)) throw InvalidInput("body.gravity", "must be >= 0");
   require_finite(body.length, "body.length");
+  if (!std::isfinite(body.mgR()))
+    throw InvalidInput("body.mass", "m g R overflows a double: the product of mass, gravity and length must be finite");
   require_triangle(body.A, body.B, body.C, "body.C",
                    "a real body has A + B >= C (triangle inequality of the moments of inertia)");
   require_triangle(body.B, body.C, body.A, "body.A",

@@ -32,9 +32,11 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
   switch (kind) {
     case LinearModelKind::FirstOrder:  // A phi'' + C w0 theta' = k phi;  B theta'' - C w0 phi' = k theta
       m.G1 << 0.0, C, -C, 0.0;
+      m.gyro_stiffness = C * C;
       break;
     case LinearModelKind::BodyFixed:  // (C - B) and (C - A) in place of C
       m.G1 << 0.0, C - B, -(C - A), 0.0;
+      m.gyro_stiffness = (C - B) * (C - A);
       break;
     case LinearModelKind::Linearized:
       // Euler-Poisson in body axes about omega = w0 e3, gamma = e3 (docs/linearization.md):
@@ -42,6 +44,8 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
       // B theta_b'' - (C - A - B) w0 phi_b' + ((C - A) w0^2 - k) theta_b = 0
       m.G1 << 0.0, C - A - B, -(C - A - B), 0.0;
       m.K2 << C - B, 0.0, 0.0, C - A;
+      // (C - A - B)^2 + 2 (A (C - A) + B (C - B)) = C^2 - (A - B)^2, as a product.
+      m.gyro_stiffness = (C - A + B) * (C + A - B);
       break;
   }
   return m;

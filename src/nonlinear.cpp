@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "detail/integration.hpp"
+#include "detail/streams.hpp"
 
 namespace heavytop {
 
@@ -214,7 +215,7 @@ class Integrator {
       if (attempts_ >= max_steps_)
         throw std::runtime_error(fmt::format(
             "nonlinear: more than max_steps = {} integration steps before t = {:.6g} s "
-            "(raise max_steps or loosen --rtol/--atol)",
+            "(raise max_steps or loosen rtol/atol)",
             max_steps_, t_));
       if (!(t_ + dt_ > t_))  // lost in the rounding of t (or not a number)
         throw std::runtime_error(fmt::format(
@@ -306,36 +307,45 @@ class Integrator {
   double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
 };
 
+// Steps between two progress calls inside a sample interval (~20 us of work each).
+constexpr std::size_t kStepsPerProgress = 64;
+
 template <bool Symmetric>
-Trajectory simulate(const Body& body, const RigidBodyState& rb0, const std::vector<double>& times,
-                    const NonlinearOptions& options, NonlinearSummary* summary) {
+void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
+              const NonlinearOptions& options, NonlinearSummary* summary) {
   const State x0 = to_state(rb0);
-  const double horizon = times.empty() ? 0.0 : times.back();
+  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
   Integrator<Symmetric> integrator(body, x0, horizon, options, summary);
   const ConservedQuantities initial = conserved_quantities(body, rb0);
 
+  const std::size_t room = std::min(samples.count, samples.chunk);
   Trajectory out;
-  out.reserve(times.size());
-  add_conserved_columns(out, times.size());
+  out.reserve(room);
+  add_conserved_columns(out, room);
 
   // At t = 0 the angles come from the initial attitude itself (SPEC section 2), not from a
   // round trip through the quaternion; k' = R (w x e3) as in angles_of().
   const AxisAngles a0 = axis_angles_of(rb0);
   State x;
-  for (double t : times) {
+  for (std::size_t i = 0; i < samples.count; ++i) {
+    const double t = samples.time(i);
     ConservedQuantities q = initial;
     AxisAngles a = a0;
     if (t > 0.0) {
-      while (integrator.time() < t) integrator.step();
+      // Progress also between samples, so that a caller can stop a long run at once.
+      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
+        integrator.step();
+        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
+      }
       integrator.interpolate(t, x);
       q = conserved_quantities(body, to_rigid_body(x));
       a = angles_of(x);
     }
     push_angles(out, t, a);
     push_conserved(out, q, initial);
+    maybe_flush(samples, out, i + 1 == samples.count);
     if (options.progress) options.progress(t);
   }
-  return out;
 }
 
 template <bool Symmetric>
@@ -423,9 +433,21 @@ Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
   validate(initial);
   validate(options);
   validate_times(times);
+  Trajectory out;
+  detail::stream_nonlinear(body, initial, gather(times, out), options, summary);
+  return out;
+}
+
+void detail::stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,
+                              const NonlinearOptions& options, NonlinearSummary* summary) {
+  validate(body);
+  validate(initial);
+  validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  return body.A == body.B ? simulate<true>(body, rb0, times, options, summary)
-                          : simulate<false>(body, rb0, times, options, summary);
+  // Exact equality picks the cheaper right-hand side whose transverse inertia is isotropic
+  // (a body symmetric only to kSymmetryTolerance takes the general one).
+  if (body.A == body.B) simulate<true>(body, rb0, samples, options, summary);
+  else simulate<false>(body, rb0, samples, options, summary);
 }
 
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,

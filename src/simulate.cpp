@@ -1,11 +1,16 @@
 #include "heavytop/simulate.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "heavytop/lagrange_exact.hpp"
+
+#include "detail/integration.hpp"
+#include "detail/streams.hpp"
 
 namespace heavytop {
 namespace {
@@ -13,21 +18,35 @@ namespace {
 constexpr std::array<std::string_view, 5> kModelNames = {"first-order", "body-fixed", "linearized", "nonlinear",
                                                          "lagrange-exact"};
 
-/// The linear models sample by sample, in chunks so that a long run reports its progress (each
-/// sample is computed on its own, so chunking changes nothing).
-Trajectory linear_in_chunks(const LinearModel& model, const InitialState& initial, const std::vector<double>& times,
-                            LinearMethod method, const std::function<void(double)>& progress) {
-  constexpr std::size_t kChunk = 1 << 16;
-  if (times.size() <= kChunk || !progress) return simulate_linear(model, initial, times, method);
-  Trajectory out;
-  out.reserve(times.size());
-  for (std::size_t begin = 0; begin < times.size(); begin += kChunk) {
-    const auto first = times.begin() + static_cast<std::ptrdiff_t>(begin);
-    const auto last = times.begin() + static_cast<std::ptrdiff_t>(std::min(times.size(), begin + kChunk));
-    out.append(simulate_linear(model, initial, std::vector<double>(first, last), method));
-    progress(*(last - 1));
+/// The closed forms sample by sample: each sample is computed on its own, so a piece of the
+/// times at a time gives the same numbers.
+template <class Evaluate>
+void closed_form_in_chunks(const detail::SampleStream& samples, const Evaluate& evaluate,
+                           const std::function<void(double)>& progress) {
+  std::vector<double> times;
+  for (std::size_t begin = 0; begin < samples.count; begin += samples.chunk) {
+    const std::size_t end = std::min(samples.count, begin + std::min(samples.chunk, samples.count - begin));
+    times.resize(end - begin);
+    for (std::size_t i = begin; i < end; ++i) times[i - begin] = samples.time(i);
+    Trajectory part = evaluate(times);
+    samples.flush(part);
+    if (progress) progress(times.back());
+    if (samples.chunk == static_cast<std::size_t>(-1)) break;
   }
-  return out;
+}
+
+/// Throws std::runtime_error naming the column and the time of the first value of `part`
+/// that is not finite.
+void check_finite(Model model, const Trajectory& part) {
+  for (std::size_t c = 0; c < kTrajectoryColumns.size() + part.extra.size(); ++c) {
+    const auto& column = part.column(c);
+    for (std::size_t i = 0; i < column.size(); ++i)
+      if (!std::isfinite(column[i]))
+        throw std::runtime_error(fmt::format(
+            "{}: {} is not a finite number at t = {:.6g} s: the motion has grown beyond the range of a "
+            "double{}", name(model), part.column_names()[c], part.t[i],
+            linear_kind(model) ? " (the linear model is unstable here; see `stability`)" : ""));
+  }
 }
 
 template <class Summary>
@@ -96,8 +115,18 @@ std::string SimulationSummary::BriefReport() const {
   return line;
 }
 
-Simulation simulate(Model model, const Body& body, const InitialState& initial, const std::vector<double>& times,
-                    const SimulateOptions& options) {
+double longest_meaningful_time(const Body& body, const InitialState& initial) {
+  const double gravity_rate = 1.0 / gravity_time(body);
+  const double rate = std::max({std::abs(initial.spin), std::abs(initial.theta_rate0), std::abs(initial.phi_rate0),
+                                std::isfinite(gravity_rate) ? gravity_rate : 0.0});
+  return rate > 0.0 ? 1e-3 / (std::numeric_limits<double>::epsilon() * rate) : std::numeric_limits<double>::infinity();
+}
+
+namespace {
+
+/// Everything simulate() and simulate_streaming() do, over any stream of samples.
+SimulationSummary run(Model model, const Body& body, const InitialState& initial, const detail::SampleStream& stream,
+                      const SimulateOptions& options, const char* time_key, NonlinearSummary* adaptive_out) {
   validate(body);
   validate(initial);
   if (std::string why; !options.IsValid(&why)) {
@@ -105,42 +134,83 @@ Simulation simulate(Model model, const Body& body, const InitialState& initial, 
     throw InvalidInput(why.substr(0, colon), colon == std::string::npos ? why : why.substr(colon + 2));
   }
   if (model == Model::LagrangeExact) validate_symmetric(body);
+  const double horizon = stream.count ? stream.time(stream.count - 1) : 0.0;
+  if (const double longest = longest_meaningful_time(body, initial); horizon > longest)
+    throw InvalidInput(time_key, fmt::format("too long: beyond {:.3g} s a double no longer resolves the phase of "
+                                             "this motion to 1e-3 rad", longest));
 
-  Simulation result;
-  SimulationSummary& s = result.summary;
+  SimulationSummary s;
   s.model = model;
+  // Every piece is checked before it is handed on: a failure never passes a NaN along.
+  detail::SampleStream samples = stream;
+  samples.flush = [&](Trajectory& part) {
+    check_finite(model, part);
+    s.samples += part.size();
+    stream.flush(part);
+  };
   try {
     if (const auto kind = linear_kind(model)) {
       s.solver = options.method == LinearMethod::Analytic ? "closed form" : "matrix exponential";
-      result.trajectory =
-          linear_in_chunks(linear_model(*kind, body), initial, times, options.method, options.progress);
+      const LinearModel linear = linear_model(*kind, body);
+      closed_form_in_chunks(samples, [&](const std::vector<double>& t) {
+        return simulate_linear(linear, initial, t, options.method);
+      }, options.progress);
     } else if (model == Model::LagrangeExact) {
       s.solver = "elliptic functions";
-      result.trajectory = simulate_lagrange_exact(body, initial, times);
+      closed_form_in_chunks(samples, [&](const std::vector<double>& t) {
+        return simulate_lagrange_exact(body, initial, t);
+      }, options.progress);
     } else if (options.integrator == Integrator::Splitting) {
       s.solver = fmt::format("splitting, order {}, step {:g} s", options.splitting.order, options.splitting.step);
+      SplittingOptions splitting = options.splitting;
+      if (options.progress) splitting.progress = options.progress;
       SplittingSummary summary;
-      result.trajectory = simulate_splitting(body, initial, times, options.splitting, &summary);
+      detail::stream_splitting(body, initial, samples, splitting, &summary);
       s.steps = summary.steps + summary.partial_steps;
       s.rhs_evaluations = summary.kicks;
       copy_drifts(summary, s);
+      if (summary.max_relative_energy_drift > kSplittingEnergyWarning)
+        s.warnings.push_back(fmt::format(
+            "the splitting's relative energy error reached {:.3g}, above {:g}: the step {:g} s is too large for "
+            "this motion (halve it, or use the adaptive integrator)",
+            summary.max_relative_energy_drift, kSplittingEnergyWarning, options.splitting.step));
     } else {
       s.solver = "Dormand-Prince 5(4)";
       NonlinearOptions adaptive = options.adaptive;
       if (options.progress) adaptive.progress = options.progress;
       NonlinearSummary summary;
-      result.trajectory = simulate_nonlinear(body, initial, times, adaptive, &summary);
+      detail::stream_nonlinear(body, initial, samples, adaptive, &summary);
       s.steps = summary.steps;
       s.rejected_steps = summary.rejected_steps;
       s.rhs_evaluations = summary.rhs_evaluations;
       copy_drifts(summary, s);
-      result.adaptive = summary;
+      if (adaptive_out) *adaptive_out = summary;
     }
   } catch (const std::runtime_error& e) {
     s.termination = Termination::Failure;
     s.message = e.what();
   }
-  s.samples = result.trajectory.size();
+  return s;
+}
+
+}  // namespace
+
+SimulationSummary simulate_streaming(Model model, const Body& body, const InitialState& initial,
+                                     const SampleGrid& grid, const SimulateOptions& options,
+                                     const TrajectorySink& sink, std::size_t chunk, NonlinearSummary* adaptive) {
+  if (!(std::isfinite(grid.t_end) && grid.t_end >= 0.0)) throw InvalidInput("t_end", "must be finite and >= 0");
+  const detail::SampleStream stream{grid.count, [&grid](std::size_t i) { return grid.time(i); },
+                                    std::max<std::size_t>(chunk, 1), [&sink](Trajectory& part) { sink(part); }};
+  return run(model, body, initial, stream, options, "t_end", adaptive);
+}
+
+Simulation simulate(Model model, const Body& body, const InitialState& initial, const std::vector<double>& times,
+                    const SimulateOptions& options) {
+  detail::validate_times(times);
+  Simulation result;
+  NonlinearSummary adaptive;
+  result.summary = run(model, body, initial, detail::gather(times, result.trajectory), options, "times", &adaptive);
+  if (model == Model::Nonlinear && options.integrator == Integrator::Adaptive) result.adaptive = adaptive;
   return result;
 }
 

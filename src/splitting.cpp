@@ -11,6 +11,7 @@
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "detail/integration.hpp"
+#include "detail/streams.hpp"
 
 namespace heavytop {
 
@@ -170,12 +171,19 @@ std::string SplittingSummary::BriefReport() const {
 Trajectory simulate_splitting(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const SplittingOptions& options,
                               SplittingSummary* summary) {
+  validate_times(times);
+  Trajectory out;
+  detail::stream_splitting(body, initial, gather(times, out), options, summary);
+  return out;
+}
+
+void detail::stream_splitting(const Body& body, const InitialState& initial, const SampleStream& samples,
+                              const SplittingOptions& options, SplittingSummary* summary) {
   validate(body);
   validate(initial);
   validate(options);
-  validate_times(times);
   const double h = options.step;
-  const double horizon = times.empty() ? 0.0 : times.back();
+  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
   if (horizon / h > static_cast<double>(options.max_steps))
     throw InvalidInput("step", fmt::format("too small: t = {:.6g} s would take more than "
                                              "max_steps = {} steps",
@@ -197,17 +205,20 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
     first = integrals(body, x);
   }
 
+  const std::size_t room = std::min(samples.count, samples.chunk);
   Trajectory out;
-  out.reserve(times.size());
-  add_conserved_columns(out, times.size());
+  out.reserve(room);
+  add_conserved_columns(out, room);
 
   std::size_t n = 0;  // grid index: x is the state at n h
-  for (double t : times) {
+  for (std::size_t i = 0; i < samples.count; ++i) {
+    const double t = samples.time(i);
     // Grid points up to t (n h <= t, with exact multiples of h on the grid).
     const auto target = static_cast<std::size_t>(std::floor(t / h * (1.0 + 4e-16)));
     for (; n < target; ++n) {
       step(flows, x, h, options.order);
       if (summary) note_drift(*summary, integrals(body, x), first, scales);
+      if (options.progress && n % 4096 == 4095) options.progress(static_cast<double>(n) * h);
     }
     const double rest = t - static_cast<double>(n) * h;
     RigidBodyState rb = rb0;
@@ -225,13 +236,14 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
     // At t = 0 the exact initial attitude.
     push_angles(out, t, axis_angles_of(rb));
     push_conserved(out, conserved_quantities(body, rb), initial_q);
+    maybe_flush(samples, out, i + 1 == samples.count);
+    if (options.progress) options.progress(t);
   }
   if (summary) {
     summary->steps = n;
     summary->kicks += 2 * strangs * n;
     summary->final_time = static_cast<double>(n) * h;
   }
-  return out;
 }
 
 }  // namespace heavytop

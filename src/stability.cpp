@@ -13,26 +13,37 @@
 namespace heavytop {
 namespace {
 
-// Roots closer than this (relative to the size of the terms that make the discriminant)
-// are one double root; a float computation of an exact boundary lands within ~1e-15.
-constexpr double kCoincidence = 1e-10;
+// The scale of every zero test: a quantity counts as zero when it is below this fraction of
+// the sizes of the terms it was computed from (so the tests hold at every scale of the body
+// and the spin). A computed boundary (a root of a condition, Newton-polished) lands within a
+// few eps of it, and ~4500 eps leaves room for the products in between; two roots mu of the
+// characteristic polynomial then count as one double root when they agree to about
+// sqrt(1e-12) = 1e-6 relative, not 1e-5 as a fixed 1e-10 on the discriminant would allow.
+constexpr double kCoincidence = 1e-12;
 // A matrix polynomial that vanishes in exact arithmetic comes out ~1e-15 of the balanced
-// system matrix's scale; one that does not (a Jordan block) is of order one.
-constexpr double kSemisimple = 1e-7;
+// system matrix's scale, and ~1e-6 for roots that are double only to kCoincidence; one that
+// does not vanish (a Jordan block) is of order one.
+constexpr double kSemisimple = 1e-4;
 
-/// c0 + c1 s + c2 s^2 in s = w0^2, with the sizes of its terms kept for zero tests.
+/// c0 + c1 s + c2 s^2 in s = w0^2, with m0, m1, m2 the sizes of the terms each coefficient was
+/// computed from (>= |c_i|; larger where the coefficient is a cancellation), for zero tests.
 struct SpinPolynomial {
   double c0 = 0.0, c1 = 0.0, c2 = 0.0;
+  double m0 = 0.0, m1 = 0.0, m2 = 0.0;
   double operator()(double s) const { return c0 + s * (c1 + s * c2); }
-  double magnitude(double s) const { return std::abs(c0) + s * (std::abs(c1) + s * std::abs(c2)); }
+  double magnitude(double s) const { return m0 + s * (m1 + s * m2); }
 };
+
+SpinPolynomial linear(double c0, double c1) { return {c0, c1, 0.0, std::abs(c0), std::abs(c1), 0.0}; }
 
 SpinPolynomial product(const SpinPolynomial& p, const SpinPolynomial& q) {
   // Used only for products of two linear factors.
-  return {p.c0 * q.c0, p.c0 * q.c1 + p.c1 * q.c0, p.c1 * q.c1};
+  return {p.c0 * q.c0, p.c0 * q.c1 + p.c1 * q.c0, p.c1 * q.c1,
+          p.m0 * q.m0, p.m0 * q.m1 + p.m1 * q.m0, p.m1 * q.m1};
 }
 
-/// The characteristic polynomial's coefficients as functions of s = w0^2.
+/// The characteristic polynomial's coefficients as functions of s = w0^2 (those of
+/// characteristic_polynomial(model, spin), as polynomials in s).
 struct SpinCharacteristic {
   double a4 = 0.0;
   SpinPolynomial k11, k22;  // the diagonal stiffnesses; a0 = k11 k22
@@ -44,25 +55,40 @@ struct SpinCharacteristic {
 SpinCharacteristic spin_characteristic(const LinearModel& m) {
   SpinCharacteristic c;
   c.a4 = m.M(0, 0) * m.M(1, 1);
-  c.k11 = {m.K0(0, 0), m.K2(0, 0), 0.0};
-  c.k22 = {m.K0(1, 1), m.K2(1, 1), 0.0};
+  c.k11 = linear(m.K0(0, 0), m.K2(0, 0));
+  c.k22 = linear(m.K0(1, 1), m.K2(1, 1));
+  const double gyro = m.G1(0, 1) * m.G1(1, 0);
   c.a2 = {m.M(0, 0) * c.k22.c0 + m.M(1, 1) * c.k11.c0,
-          m.M(0, 0) * c.k22.c1 + m.M(1, 1) * c.k11.c1 - m.G1(0, 1) * m.G1(1, 0), 0.0};
+          m.M(0, 0) * c.k22.c1 + m.M(1, 1) * c.k11.c1 - gyro, 0.0,
+          m.M(0, 0) * c.k22.m0 + m.M(1, 1) * c.k11.m0,
+          m.M(0, 0) * c.k22.m1 + m.M(1, 1) * c.k11.m1 + std::abs(gyro), 0.0};
   c.a0 = product(c.k11, c.k22);
-  c.discriminant = {c.a2.c0 * c.a2.c0 - 4.0 * c.a4 * c.a0.c0,
-                    2.0 * c.a2.c0 * c.a2.c1 - 4.0 * c.a4 * c.a0.c1,
-                    c.a2.c1 * c.a2.c1 - 4.0 * c.a4 * c.a0.c2};
+  // a2 = (u + v) + (U + V + g^2) s and 4 a4 a0 = 4 (u + U s)(v + V s) with u = M11 k22(0),
+  // v = M22 k11(0), U = M11 K2_22, V = M22 K2_11, so that a2^2 - 4 a4 a0 is, without the
+  // cancellation of its expanded form (a slender body's double frequencies hinge on it):
+  //   (u - v)^2 + 2 [(u - v)(U - V) + (u + v) g^2] s + [(U - V)^2 + g^2 W] s^2,
+  // W = g^2 + 2 (U + V) given in closed form by the model (gyro_stiffness).
+  const double u = m.M(0, 0) * c.k22.c0, v = m.M(1, 1) * c.k11.c0;
+  const double U = m.M(0, 0) * c.k22.c1, V = m.M(1, 1) * c.k11.c1;
+  const double g2 = -gyro, W = m.gyro_stiffness;
+  c.discriminant = {(u - v) * (u - v),
+                    2.0 * ((u - v) * (U - V) + (u + v) * g2),
+                    (U - V) * (U - V) + g2 * W,
+                    (u - v) * (u - v),
+                    2.0 * (std::abs((u - v) * (U - V)) + std::abs((u + v) * g2)),
+                    (U - V) * (U - V) + std::abs(g2 * W)};
   return c;
 }
 
-/// Real roots of p (degree <= 2), each polished by Newton's method; a double root once.
+/// Real roots of p (degree <= 2), each polished by Newton's method; a double root once. A
+/// coefficient counts as zero only when it is zero to rounding against its own terms (a
+/// small leading coefficient is kept: it means a large root, such as a critical spin of 1e9).
 std::vector<double> real_roots(const SpinPolynomial& p) {
   std::vector<double> roots;
-  const double scale = std::abs(p.c0) + std::abs(p.c1) + std::abs(p.c2);
-  if (scale == 0.0) return roots;
   const double eps = std::numeric_limits<double>::epsilon();
-  if (std::abs(p.c2) <= eps * scale) {
-    if (std::abs(p.c1) > eps * scale) roots.push_back(-p.c0 / p.c1);
+  auto zero = [&](double c, double m) { return std::abs(c) <= 16.0 * eps * m; };
+  if (zero(p.c2, p.m2)) {
+    if (!zero(p.c1, p.m1)) roots.push_back(-p.c0 / p.c1);
   } else {
     const double d = p.c1 * p.c1 - 4.0 * p.c2 * p.c0;
     const double d_scale = p.c1 * p.c1 + 4.0 * std::abs(p.c2 * p.c0);
@@ -102,9 +128,10 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
   const double s = spin * spin;
   const double a4 = c.a4, a2 = c.a2(s), a0 = c.a0(s), disc = c.discriminant(s);
   const bool a0_zero = is_zero(c.k11, s) || is_zero(c.k22, s);
-  const double a2_terms = c.a2.magnitude(s);
-  const bool double_root =
-      std::abs(disc) <= kCoincidence * (a2_terms * a2_terms + 4.0 * a4 * std::abs(a0));
+  if (!std::isfinite(c.discriminant.magnitude(s)) || !std::isfinite(a4))
+    throw InvalidInput("motion.spin", fmt::format("{:g} rad/s is too large for this body: its characteristic "
+                                                  "polynomial overflows a double", spin));
+  const bool double_root = std::abs(disc) <= kCoincidence * c.discriminant.magnitude(s);
 
   // Roots mu = lambda^2 of a4 mu^2 + a2 mu + a0.
   std::complex<double> mu1, mu2;
@@ -191,6 +218,7 @@ std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model) {
   struct Piece {
     double lo, hi;  // in s; hi = +inf for the last gap
     bool stable;
+    bool point;     // the single spin lo == hi (an end), else the open gap between two ends
   };
   const double k_scale = std::max({std::abs(model.K0(0, 0)), std::abs(model.K0(1, 1))});
   const double m_scale = std::min({model.M(0, 0), model.M(1, 1)});
@@ -199,11 +227,11 @@ std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model) {
 
   std::vector<Piece> pieces;
   for (std::size_t i = 0; i < ends.size(); ++i) {
-    pieces.push_back({ends[i], ends[i], stable_at(ends[i])});
+    pieces.push_back({ends[i], ends[i], stable_at(ends[i]), true});
     const bool last = i + 1 == ends.size();
     const double hi = last ? std::numeric_limits<double>::infinity() : ends[i + 1];
     const double probe = last ? s_beyond : 0.5 * (ends[i] + ends[i + 1]);
-    pieces.push_back({ends[i], hi, stable_at(probe)});
+    pieces.push_back({ends[i], hi, stable_at(probe), false});
   }
 
   std::vector<SpinInterval> intervals;
@@ -211,7 +239,7 @@ std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model) {
     if (!pieces[i].stable) { ++i; continue; }
     std::size_t j = i;
     while (j + 1 < pieces.size() && pieces[j + 1].stable) ++j;
-    SpinInterval interval{std::sqrt(pieces[i].lo), std::nullopt};
+    SpinInterval interval{std::sqrt(pieces[i].lo), std::nullopt, pieces[i].point, pieces[j].point};
     if (std::isfinite(pieces[j].hi)) interval.hi = std::sqrt(pieces[j].hi);
     intervals.push_back(interval);
     i = j + 1;

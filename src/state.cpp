@@ -46,9 +46,9 @@ void Trajectory::append(const Trajectory& other) {
 }
 
 std::vector<double> sample_times(double t_end, std::size_t n) {
+  const SampleGrid grid{t_end, n};
   std::vector<double> times(n);
-  for (std::size_t i = 0; i < n; ++i)
-    times[i] = n == 1 ? 0.0 : t_end * static_cast<double>(i) / static_cast<double>(n - 1);
+  for (std::size_t i = 0; i < n; ++i) times[i] = grid.time(i);
   return times;
 }
 

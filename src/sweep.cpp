@@ -140,7 +140,7 @@ void validate_sweep(const Body& base, const InitialState& base_state,
   if (options.nonlinear) {
     const double start_tilt = tilt(base_state.theta0, base_state.phi0);
     if (start_tilt == 0.0 && base_state.theta_rate0 == 0.0 && base_state.phi_rate0 == 0.0)
-      throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. --theta0 1e-3): the upright body never moves");
+      throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. theta0 = 1e-3): the upright body never moves");
     if (start_tilt >= options.max_tilt)
       throw InvalidInput("max_tilt", "must exceed the initial tilt");
   }

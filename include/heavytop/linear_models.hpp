@@ -43,6 +43,10 @@ struct LinearModel {
   Eigen::Matrix2d G1;  ///< kg m^2, gyroscopic coefficients per unit spin (zero diagonal)
   Eigen::Matrix2d K0;  ///< N m, stiffness at zero spin (diagonal; -m g R for the paper's models)
   Eigen::Matrix2d K2;  ///< kg m^2, stiffness per unit spin squared (diagonal)
+  /// kg^2 m^4, g^2 + 2 (M11 K2_22 + M22 K2_11) with g^2 = -G1_12 G1_21: the combination the
+  /// discriminant's w0^4 coefficient needs, set by linear_model() in closed form ((C - A + B)(C + A - B)
+  /// for `linearized`, where the sum of its terms cancels for a slender body, C << A).
+  double gyro_stiffness = 0.0;
 
   /// kg m^2/s, gyroscopic matrix at spin w0 (rad/s).
   Eigen::Matrix2d G(double spin) const { return spin * G1; }

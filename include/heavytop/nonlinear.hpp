@@ -33,7 +33,8 @@ struct NonlinearOptions {
   double atol = 1e-12;
   /// Largest number of attempted steps (accepted + rejected) before giving up, > 0.
   std::size_t max_steps = 100'000'000;
-  /// Called with the simulated time (s) after each output sample, if set (a progress bar).
+  /// Called with the simulated time (s) after each output sample and every 64 steps between
+  /// samples, if set (a progress bar; a caller may throw from it to stop the run).
   std::function<void(double)> progress;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a

@@ -73,6 +73,10 @@ enum class Termination {
   Failure,  ///< a numerical failure (the solver could not go on); `message` says where and why
 };
 
+/// The relative energy error of the splitting integrator above which simulate() warns that the
+/// step is too large for the motion (the integrator itself bounds it only as O(h^order)).
+inline constexpr double kSplittingEnergyWarning = 1e-3;
+
 /// What simulate() did: the solver, its work, and the drift of the first integrals.
 struct SimulationSummary {
   Model model = Model::Nonlinear;
@@ -89,6 +93,10 @@ struct SimulationSummary {
   std::optional<double> max_relative_vertical_momentum_drift;
   std::optional<double> max_relative_axial_momentum_drift;
 
+  /// One line each: what a reader should know although the run succeeded (e.g. the
+  /// splitting's energy error above kSplittingEnergyWarning).
+  std::vector<std::string> warnings;
+
   bool ok() const noexcept { return termination == Termination::Success; }
   /// One line for people.
   std::string BriefReport() const;
@@ -103,11 +111,31 @@ struct Simulation {
   std::optional<NonlinearSummary> adaptive;
 };
 
+/// s, the longest horizon over which a double still resolves the phase of the motion started
+/// from `initial` to 1e-3 rad: 1e-3 / (eps * rate), rate the fastest of the spin, the initial
+/// rates and the gravity frequency 1 / gravity_time(body). Beyond it every model's angles are
+/// rounding noise, and simulate() refuses the times (InvalidInput key "t_end" or "times").
+double longest_meaningful_time(const Body& body, const InitialState& initial);
+
+/// Receives consecutive pieces of a trajectory (same columns, at most `chunk` samples each).
+using TrajectorySink = std::function<void(const Trajectory&)>;
+
+/// simulate() at `grid`, streamed: `sink` gets the trajectory in pieces of at most `chunk`
+/// samples as they are computed, so memory stays flat in the number of samples. On a
+/// numerical failure the pieces already handed on stay valid and the summary says where.
+/// `adaptive`, if not null, receives the adaptive integrator's own summary.
+SimulationSummary simulate_streaming(Model model, const Body& body, const InitialState& initial,
+                                     const SampleGrid& grid, const SimulateOptions& options,
+                                     const TrajectorySink& sink, std::size_t chunk = 4096,
+                                     NonlinearSummary* adaptive = nullptr);
+
 /// The motion of `model` for `body` from `initial` (SPEC section 2 mapping) at `times` (s;
 /// finite, >= 0, non-decreasing). Columns theta, phi, theta_rate, phi_rate for every model;
 /// the nonlinear integrators add the conserved quantities (nonlinear.hpp). Throws
-/// InvalidInput for bad input (the body, the state, the options; LagrangeExact needs A = B);
-/// a numerical failure is reported in the summary (Termination::Failure), not thrown.
+/// InvalidInput for bad input (the body, the state, the options; LagrangeExact needs A = B;
+/// times beyond longest_meaningful_time()); a numerical failure, including a value that is
+/// not finite (a linear model grown beyond a double), is reported in the summary
+/// (Termination::Failure, with the column and the time), not thrown.
 Simulation simulate(Model model, const Body& body, const InitialState& initial,
                     const std::vector<double>& times, const SimulateOptions& options = {});
 

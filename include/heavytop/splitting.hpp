@@ -16,6 +16,7 @@
 /// very long runs instead of drifting.
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct SplittingOptions {
   /// Largest number of grid steps a run may take (> 0): refuses a step too small for the
   /// horizon rather than running for days.
   std::size_t max_steps = 1'000'000'000;
+  /// Called with the simulated time (s) after each sample and every few thousand steps, if
+  /// set (a progress bar; a caller may throw from it to stop the run).
+  std::function<void(double)> progress;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a
   /// one-line "key: rule" message (key "step", "order" or "max_steps").

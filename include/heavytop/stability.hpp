@@ -29,11 +29,14 @@ struct StabilityVerdict {
 /// erratum E2), which is decided from the system matrix, not from the discriminant alone.
 StabilityVerdict linear_stability(const LinearModel& model, double spin);
 
-/// A closed range of spins lo <= w0 <= hi (rad/s); hi = nullopt means "and above".
-/// The model is stable inside; at an end it is stable only where linear_stability says so.
+/// A range of spins from lo to hi (rad/s); hi = nullopt means "and above". The model is
+/// stable inside; at an end it is stable exactly where the end is included (as
+/// linear_stability says there: the boundary of (9) is a Jordan block, so excluded).
 struct SpinInterval {
   double lo = 0.0;
   std::optional<double> hi;
+  bool lo_included = true;  ///< stable at w0 = lo itself
+  bool hi_included = true;  ///< stable at w0 = hi itself (meaningless when hi is nullopt)
 };
 
 /// The spins w0 >= 0 at which `model` is stable, ascending and disjoint. The ends are roots

@@ -51,7 +51,17 @@ struct Trajectory {
 inline constexpr std::array<std::string_view, 5> kTrajectoryColumns = {"t", "theta", "phi", "theta_rate",
                                                                         "phi_rate"};
 
-/// n sample times t_i = i t_end / (n - 1), i = 0..n-1 (t = {0} when n == 1). s.
+/// Uniform sample times t_i = i t_end / (count - 1) (t = {0} when count == 1), not stored.
+struct SampleGrid {
+  double t_end = 0.0;     ///< s, finite and >= 0
+  std::size_t count = 0;  ///< samples
+  /// s, the i-th time.
+  double time(std::size_t i) const noexcept {
+    return count == 1 ? 0.0 : t_end * static_cast<double>(i) / static_cast<double>(count - 1);
+  }
+};
+
+/// n sample times t_i = i t_end / (n - 1), i = 0..n-1 (t = {0} when n == 1), SampleGrid's. s.
 std::vector<double> sample_times(double t_end, std::size_t n);
 
 }  // namespace heavytop

@@ -47,9 +47,10 @@ std::string intervals_text(const std::vector<SpinInterval>& intervals) {
   std::string text;
   for (const auto& i : intervals) {
     if (!text.empty()) text += ", ";
-    text += i.hi              ? fmt::format("[{:.6g}, {:.6g}]", i.lo, *i.hi)
-            : i.lo == 0.0     ? std::string("every spin")
-                              : fmt::format("above {:.6g}", i.lo);
+    text += i.hi ? fmt::format("{}{:.6g}, {:.6g}{}", i.lo_included ? "[" : "(", i.lo, *i.hi, i.hi_included ? "]" : ")")
+            : i.lo == 0.0 ? std::string(i.lo_included ? "every spin" : "every spin > 0")
+            : i.lo_included ? fmt::format("from {:.6g}", i.lo)
+                            : fmt::format("above {:.6g}", i.lo);
   }
   return text;
 }

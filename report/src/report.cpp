@@ -48,7 +48,10 @@ std::string errata_html(const Body& body, const InitialState& state, const std::
            "(eight constants for a fourth-order system, then four of them set to 1). heavytop's closed form "
            "solves (4) for every input, with the t&nbsp;cos, t&nbsp;sin terms at a double root.</li>";
   const double boundary = paper_condition_9_spin(body);
-  items += fmt::format(
+  if (body.mgR() <= 0.0) {
+    items += "<li><b>E2</b> does not apply: with the centre of mass at or below O, (9) asks for no spin, "
+             "so there is no boundary spin to misjudge.</li>";
+  } else items += fmt::format(
       "<li><b>E2, condition (9).</b> The boundary w0 = {:.6g} rad/s is not stable: the two frequencies merge "
       "into a Jordan block and the amplitude grows linearly. Stability needs strict inequality.{}</li>",
       boundary,

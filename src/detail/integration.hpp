@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -109,6 +110,39 @@ inline Eigen::Quaterniond unit_quaternion(const Eigen::Matrix3d& attitude) {
   Eigen::Quaterniond q(attitude);
   q.normalize();
   return q;
+}
+
+// ---- Samples -----------------------------------------------------------------------------------
+
+// The samples of a run, streamed: how many, the time of each (s; finite, >= 0, non-decreasing),
+// and where the trajectory goes, `chunk` samples at a time (then the rest), so that memory
+// stays flat in the number of samples. `flush` may take the columns' contents (move them).
+struct SampleStream {
+  std::size_t count = 0;
+  std::function<double(std::size_t)> time;
+  std::size_t chunk = static_cast<std::size_t>(-1);
+  std::function<void(Trajectory&)> flush;
+};
+
+// A stream over `times` that gathers every sample into `out`.
+inline SampleStream gather(const std::vector<double>& times, Trajectory& out) {
+  return {times.size(), [&times](std::size_t i) { return times[i]; }, static_cast<std::size_t>(-1),
+          [&out](Trajectory& part) {
+            if (out.size() == 0) out = std::move(part);
+            else out.append(part);
+          }};
+}
+
+// Empties every column of `out`, keeping the extra columns' names.
+inline void clear_samples(Trajectory& out) {
+  for (std::size_t c = 0; c < kTrajectoryColumns.size() + out.extra.size(); ++c) out.column(c).clear();
+}
+
+// After a sample is pushed: hands `out` on when a chunk is full, or when `last` is true.
+inline void maybe_flush(const SampleStream& stream, Trajectory& out, bool last) {
+  if (out.size() < stream.chunk && !last) return;
+  stream.flush(out);
+  clear_samples(out);
 }
 
 // ---- Output -----------------------------------------------------------------------------------

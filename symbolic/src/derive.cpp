@@ -1,11 +1,16 @@
 #include "heavytop/symbolic/derive.hpp"
 
+#include "algebra.hpp"
+
 #include <stdexcept>
 
 #include "heavytop/symbolic/symbols.hpp"
 
 namespace heavytop::symbolic {
 namespace {
+
+using detail::ex_to_matrix;
+using detail::is_zero_matrix;
 
 using GiNaC::ex;
 using GiNaC::matrix;
@@ -20,15 +25,6 @@ matrix map_entries(const matrix& a, ex (*f)(const ex&)) {
 }
 
 ex normal_of(const ex& e) { return GiNaC::normal(e); }
-
-matrix ex_to_matrix(const ex& e) { return GiNaC::ex_to<matrix>(e); }
-
-bool is_zero_matrix(const matrix& a) {
-  for (unsigned i = 0; i < a.rows(); ++i)
-    for (unsigned j = 0; j < a.cols(); ++j)
-      if (!GiNaC::normal(a(i, j)).is_zero()) return false;
-  return true;
-}
 
 bool equal_matrices(const matrix& a, const matrix& b) { return is_zero_matrix(a.sub(b)); }
 

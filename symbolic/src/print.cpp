@@ -367,4 +367,6 @@ ex tidy(const ex& e) {
   return out;
 }
 
+std::string text(const GiNaC::ex& e) { return to_string(tidy(e), Style::Text); }
+
 }  // namespace heavytop::symbolic

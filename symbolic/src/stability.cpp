@@ -3,16 +3,19 @@
 #include <stdexcept>
 
 #include "heavytop/symbolic/derive.hpp"
+
+#include "algebra.hpp"
 #include "heavytop/symbolic/print.hpp"
 #include "heavytop/symbolic/symbols.hpp"
 
 namespace heavytop::symbolic {
 namespace {
 
+using detail::ex_to_matrix;
+using detail::is_zero_matrix;
+
 using GiNaC::ex;
 using GiNaC::matrix;
-
-matrix ex_to_matrix(const ex& e) { return GiNaC::ex_to<matrix>(e); }
 
 bool has_symbol(const ex& e) {
   if (GiNaC::is_a<GiNaC::symbol>(e)) return true;
@@ -57,15 +60,6 @@ bool positive(const ex& e) {
   return sign(e) == 1 || sign(GiNaC::collect_common_factors(e.expand())) == 1 ||
          sign(factor_radicals(e)) == 1;
 }
-
-bool is_zero_matrix(const matrix& a) {
-  for (unsigned i = 0; i < a.rows(); ++i)
-    for (unsigned j = 0; j < a.cols(); ++j)
-      if (!GiNaC::normal(a(i, j)).is_zero()) return false;
-  return true;
-}
-
-std::string text(const ex& e) { return to_string(tidy(e), Style::Text); }
 
 // Requirement "value > floor" for a value that may hold omega0^2 linearly: solved for omega0^2
 // when it does, as the paper solves (9).

@@ -19,6 +19,9 @@ enum class Style {
 /// `e` printed in `style`.
 std::string to_string(const GiNaC::ex& e, Style style);
 
+/// `e` tidied and printed for people: to_string(tidy(e), Style::Text).
+std::string text(const GiNaC::ex& e);
+
 /// `e` tidied for reading: polynomials in lambda collected by power, coefficients collected in
 /// omega0 and factored; the value is unchanged.
 GiNaC::ex tidy(const GiNaC::ex& e);

@@ -1,0 +1,17 @@
+#pragma once
+// Private to the library: the integrators of the nonlinear model with their samples streamed
+// (SampleStream), behind simulate_nonlinear/simulate_splitting and simulate_streaming().
+
+#include "integration.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/splitting.hpp"
+
+namespace heavytop::detail {
+
+void stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,
+                      const NonlinearOptions& options, NonlinearSummary* summary);
+
+void stream_splitting(const Body& body, const InitialState& initial, const SampleStream& samples,
+                      const SplittingOptions& options, SplittingSummary* summary);
+
+}  // namespace heavytop::detail
