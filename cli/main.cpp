@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/body.hpp"
+#include "heavytop/io/output.hpp"
 #include "heavytop/report/report.hpp"
 
 int main(int argc, char** argv) {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   add(cli::add_sweep_command);
   add(cli::add_report_command);
 
+  io::remove_temporaries_on_signals();
   try {
     app.parse(argc, argv);
     for (auto& [command, action] : actions)

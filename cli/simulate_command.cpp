@@ -1,5 +1,6 @@
 // heavytop simulate: one model's motion, theta(t), phi(t) and their rates, as CSV or JSON.
 #include <cmath>
+#include <iostream>
 #include <string>
 
 #include <fmt/format.h>
@@ -29,7 +30,12 @@ struct SimulateFlags {
   CLI::Option* integrator_option = nullptr;
   CLI::Option* step_option = nullptr;
   CLI::Option* order_option = nullptr;
+  long long max_steps = 0;
+  CLI::Option* max_steps_option = nullptr;
 };
+
+// --format json holds the whole trajectory (11 columns of doubles, then the text) in memory.
+constexpr long long kMaxJsonSamples = 2'000'000;
 
 }  // namespace
 
@@ -67,6 +73,11 @@ Action add_simulate_command(CLI::App& app) {
                        ->default_str(fmt::format("{}", splitting.step));
   o->order_option = cmd->add_option("--order", splitting.order, "splitting: order 2 (Strang) or 4 (Suzuki)")
                         ->default_str("2");
+  o->max_steps_option =
+      cmd->add_option("--max-steps", o->max_steps,
+                      "nonlinear: the most integration steps a run may take before it gives up")
+          ->default_str(fmt::format("{} (adaptive), {} (splitting)", NonlinearOptions{}.max_steps,
+                                    SplittingOptions{}.max_steps));
 
   return [inputs, o] {
     inputs->resolve();
@@ -94,7 +105,7 @@ Action add_simulate_command(CLI::App& app) {
       throw InvalidInput("--method", "applies to the linear models only");
     const auto integrator = integrator_from_name(o->integrator);
     if (!integrator) throw InvalidInput("--integrator", "must be adaptive or splitting");
-    for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option})
+    for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option, o->max_steps_option})
       if (given->count() && !nonlinear)
         throw InvalidInput(given->get_name(), "applies to --model nonlinear only");
     if (*integrator != Integrator::Splitting && (o->step_option->count() || o->order_option->count()))
@@ -102,17 +113,43 @@ Action add_simulate_command(CLI::App& app) {
     o->options.method = o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;
     o->options.integrator = *integrator;
 
+    const bool json = inputs->format() == "json";
+    if (json && o->samples > kMaxJsonSamples)
+      throw InvalidInput("--samples", fmt::format("must be at most {} with --format json, which holds the whole "
+                                                  "trajectory in memory (--format csv streams any number)",
+                                                  kMaxJsonSamples));
+    if (o->max_steps_option->count()) {
+      if (o->max_steps < 1) throw InvalidInput("--max-steps", "must be an integer >= 1");
+      o->options.adaptive.max_steps = o->options.splitting.max_steps = static_cast<std::size_t>(o->max_steps);
+    }
+
     ProgressBar progress("simulate", o->t_end);
     o->options.progress = [&](double t) { progress.update(t); };
-    const Simulation run = simulate(*model, inputs->body(), inputs->state(),
-                                    sample_times(o->t_end, static_cast<std::size_t>(o->samples)), o->options);
-    if (!run.summary.ok()) throw Failure(run.summary.message);
-    const bool adaptive = nonlinear && *integrator == Integrator::Adaptive;
-    write_output(inputs->output(),
-                 inputs->format() == "json"
-                     ? io::trajectory_json(*model, inputs->body(), inputs->state(), run.trajectory,
-                                           adaptive ? &*run.adaptive : nullptr)
-                     : io::trajectory_csv(run.trajectory));
+    const SampleGrid grid{o->t_end, static_cast<std::size_t>(o->samples)};
+    // Open the output first: a path that cannot be written is bad input, found before any work.
+    io::OutputStream out(inputs->output(), "--output");
+    NonlinearSummary adaptive;
+    SimulationSummary summary;
+    if (json) {
+      Trajectory all;
+      summary = simulate_streaming(*model, inputs->body(), inputs->state(), grid, o->options,
+                                   [&](const Trajectory& part) { all.size() ? all.append(part) : void(all = part); },
+                                   grid.count, &adaptive);
+      if (!summary.ok()) throw Failure(summary.message);
+      const bool with_summary = nonlinear && *integrator == Integrator::Adaptive;
+      out.write(io::trajectory_json(*model, inputs->body(), inputs->state(), all, with_summary ? &adaptive : nullptr));
+    } else {
+      // CSV rows as they are computed: memory stays flat in the number of samples.
+      bool header = false;
+      summary = simulate_streaming(*model, inputs->body(), inputs->state(), grid, o->options, [&](const Trajectory& part) {
+        if (!header) out.write(io::trajectory_csv_header(part));
+        header = true;
+        out.write(io::trajectory_csv_rows(part, 0, part.size()));
+      });
+      if (!summary.ok()) throw Failure(summary.message);
+    }
+    for (const std::string& warning : summary.warnings) std::cerr << "heavytop: warning: " << warning << "\n";
+    out.commit();
   };
 }
 

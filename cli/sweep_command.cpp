@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <functional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -71,51 +72,58 @@ Action add_sweep_command(CLI::App& app) {
 
     const std::size_t total = grid_size(axes);
     const std::string& path = inputs->output();
-    const bool to_file = !path.empty() && path != "-";
     const std::string partial = path + ".partial", args_file = path + ".partial.args";
     const std::string args = fingerprint(*inputs, axes, s->options);
     const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);
 
-    std::size_t done = 0;
-    std::FILE* out = stdout;
-    if (to_file) {
-      namespace fs = std::filesystem;
-      if (fs::exists(partial) && fs::exists(args_file) && read_file(args_file) == args) {
-        std::string content = read_file(partial);
-        content.erase(content.rfind('\n') == std::string::npos ? 0 : content.rfind('\n') + 1);  // drop a torn line
-        if (content.starts_with(head)) {
-          done = static_cast<std::size_t>(std::count(content.begin(), content.end(), '\n')) - 1;
-          fs::resize_file(partial, content.size());
-        }
-      }
-      if (done == 0) {
-        write_output(args_file, args);
-        write_output(partial, head);
-      } else {
-        std::cerr << fmt::format("heavytop: resuming the sweep at row {} of {} ({})\n", done + 1, total, partial);
-      }
-      out = std::fopen(partial.c_str(), "ab");
-      if (!out) throw Failure(fmt::format("--output: cannot write '{}'", partial));
-    } else {
-      std::fputs(head.c_str(), out);
-    }
-
-    // Chunks in grid order: each is computed in parallel, then appended whole and flushed.
+    // Rows in chunks of grid order: each computed in parallel, then appended whole.
     const std::size_t chunk = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 8 : 256, 20000);
     ProgressBar progress("sweep", static_cast<double>(total));
-    while (done < total) {
-      const std::size_t end = std::min(total, done + chunk);
-      const std::string text = io::sweep_csv_rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end));
-      if (std::fwrite(text.data(), 1, text.size(), out) != text.size() || std::fflush(out) != 0)
-        throw Failure("--output: write failed");
-      done = end;
-      progress.update(static_cast<double>(done));
+    auto compute = [&](std::size_t done, const std::function<void(const std::string&)>& write) {
+      for (; done < total; progress.update(static_cast<double>(done))) {
+        const std::size_t end = std::min(total, done + chunk);
+        write(io::sweep_csv_rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end)));
+        done = end;
+      }
+    };
+    if (!io::is_regular_target(path)) {  // stdout, a device or a pipe: written directly
+      io::OutputStream out(path, "--output");
+      out.write(head);
+      compute(0, [&](const std::string& rows) { out.write(rows); });
+      out.commit();
+      return;
     }
-    if (to_file) {
-      std::fclose(out);
-      std::filesystem::rename(partial, path);
-      std::filesystem::remove(args_file);
+
+    const io::OutputLock lock(path, "--output");  // one sweep per output at a time: a second is refused
+    namespace fs = std::filesystem;
+    std::size_t done = 0;
+    if (fs::exists(partial) && fs::exists(args_file) && read_file(args_file) == args) {
+      std::string content = read_file(partial);
+      content.erase(content.rfind('\n') == std::string::npos ? 0 : content.rfind('\n') + 1);  // drop a torn line
+      if (content.starts_with(head)) {
+        done = static_cast<std::size_t>(std::count(content.begin(), content.end(), '\n')) - 1;
+        fs::resize_file(partial, content.size());
+      }
     }
+    if (done == 0) {
+      write_output(args_file, args);
+      write_output(partial, head);
+    } else {
+      std::cerr << fmt::format("heavytop: resuming the sweep at row {} of {} ({})\n", done + 1, total, partial);
+    }
+    std::FILE* out = std::fopen(partial.c_str(), "ab");
+    if (!out) throw Failure(fmt::format("--output: cannot write '{}'", partial));
+    compute(done, [&](const std::string& rows) {
+      // Whole chunks, flushed: an interrupted sweep leaves complete rows (at most one torn line).
+      if (std::fwrite(rows.data(), 1, rows.size(), out) != rows.size() || std::fflush(out) != 0)
+        throw Failure(fmt::format("--output: cannot write '{}'", partial));
+    });
+    if (std::fclose(out) != 0) throw Failure(fmt::format("--output: cannot write '{}'", partial));
+    io::copy_mode(path, partial);
+    if (std::rename(partial.c_str(), path.c_str()) != 0)
+      throw Failure(fmt::format("--output: cannot replace '{}'", path));
+    std::error_code ignored;
+    fs::remove(args_file, ignored);
   };
 }
 

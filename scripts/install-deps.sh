@@ -11,6 +11,7 @@ packages=(
   libginac-dev libcln-dev             # computer algebra for the symbolic target
   texlive-latex-base                  # pdflatex: the test that derive's LaTeX compiles
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+  python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
 )
 

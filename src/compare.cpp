@@ -18,10 +18,19 @@ ModelComparison against(const std::string& model, Trajectory tr, const Trajector
                         const MotionFrequencies& truth_frequencies) {
   ModelComparison c;
   c.model = model;
+  const bool linear = linear_model_from_name(model).has_value();
   for (std::size_t i = 0; i < tr.size(); ++i) {
+    if (linear && !(std::max(std::abs(tr.theta[i]), std::abs(tr.phi[i])) <= kDivergedAngle)) {
+      c.diverged_at = tr.t[i];
+      break;
+    }
     const double e = std::max(std::abs(tr.theta[i] - truth.theta[i]), std::abs(tr.phi[i] - truth.phi[i]));
     c.max_angle_error = std::max(c.max_angle_error, e);
     c.final_angle_error = e;
+  }
+  if (c.diverged_at) {
+    c.trajectory = std::move(tr);
+    return c;
   }
   c.frequencies = measure_frequencies(tr);
   auto relative = [](std::optional<double> x, std::optional<double> truth) -> std::optional<double> {

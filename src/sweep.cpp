@@ -121,15 +121,25 @@ void validate_sweep(const Body& base, const InitialState& base_state,
   for (std::size_t i = 0; i < axes.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (axes[i].key == axes[j].key) throw InvalidInput("vary", fmt::format("'{}' is varied twice", axes[i].key));
-  // Every grid point is checked, before any output: cheap next to the analysis.
-  const std::size_t n = grid_size(axes);
-  for (std::size_t i = 0; i < n; ++i) {
+  double points = 1.0;  // in floating point: the product of the counts may not fit an integer
+  for (const auto& a : axes) points *= static_cast<double>(a.count);
+  if (points > static_cast<double>(kMaxSweepPoints))
+    throw InvalidInput("vary", fmt::format("the grid has {:g} points, more than the {} a sweep may have", points,
+                                           kMaxSweepPoints));
+  // Every rule of a body (positive and finite values, the triangle inequalities, a finite
+  // m g R) and the range of the spin the analysis can hold are linear or monotone in each
+  // varied value along an axis, and the values of an axis lie between its START and STOP, so
+  // if the corners of the grid pass, every point does: 2^axes checks, not one per point.
+  for (std::size_t corner = 0; corner < (std::size_t{1} << axes.size()); ++corner) {
+    std::size_t i = 0;
+    for (std::size_t k = 0; k < axes.size(); ++k) i = i * axes[k].count + ((corner >> k & 1) ? axes[k].count - 1 : 0);
     Body body = base;
     InitialState state = base_state;
     apply_grid_point(axes, i, body, state);
     try {
       validate(body);
       validate(state);
+      for (LinearModelKind kind : kLinearModels) linear_stability(linear_model(kind, body), state.spin);
     } catch (const InvalidInput& e) {
       std::string where;
       const std::vector<double> values = grid_values(axes, i);

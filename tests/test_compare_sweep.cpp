@@ -1,5 +1,6 @@
 // The comparison's numbers against direct calls of the models, the frequency measurement
 // against a motion with known frequencies, and the sweep against single stability calls.
+#include <optional>
 #include <cmath>
 #include <numbers>
 
@@ -27,13 +28,26 @@ TEST(Compare, NumbersEqualDirectCallsOfTheModels) {
   for (const ModelComparison& m : c.models) {
     const Trajectory direct = simulate_linear(linear_model(*linear_model_from_name(m.model), b), s, times, LinearMethod::Analytic);
     double max_error = 0.0, final_error = 0.0;
+    std::optional<double> diverged_at;  // where its angles first pass kDivergedAngle
     for (std::size_t i = 0; i < times.size(); ++i) {
+      if (std::max(std::abs(direct.theta[i]), std::abs(direct.phi[i])) > kDivergedAngle) {
+        diverged_at = times[i];
+        break;
+      }
       final_error = std::max(std::abs(direct.theta[i] - truth.theta[i]), std::abs(direct.phi[i] - truth.phi[i]));
       max_error = std::max(max_error, final_error);
     }
+    EXPECT_EQ(m.diverged_at, diverged_at) << m.model;
     EXPECT_EQ(m.max_angle_error, max_error) << m.model;
-    EXPECT_EQ(m.final_angle_error, final_error) << m.model;
+    if (!diverged_at) {
+      EXPECT_EQ(m.final_angle_error, final_error) << m.model;
+    }
   }
+  // The body-fixed model (5) is unstable at this spin (its critical spin is above 1.6 rad/s):
+  // it grows past any small-motion meaning within the horizon, and is reported as diverged.
+  EXPECT_FALSE(linear_stability(linear_model(LinearModelKind::BodyFixed, b), s.spin).stable);
+  EXPECT_TRUE(c.models[1].diverged_at.has_value());
+  EXPECT_FALSE(c.models[0].diverged_at || c.models[2].diverged_at);
   // The exact linearisation is close at this small amplitude, the paper's (4) is not (E3).
   EXPECT_LT(c.models[2].max_angle_error, 1e-4);
   EXPECT_GT(c.models[0].max_angle_error, 1e-3);

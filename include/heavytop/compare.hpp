@@ -22,12 +22,20 @@ struct MotionFrequencies {
 /// nutation; interior maxima are refined by a parabola through three samples).
 MotionFrequencies measure_frequencies(const Trajectory& trajectory);
 
+/// rad, the tilt angle beyond which a linear (small-motion) model counts as diverged.
+inline constexpr double kDivergedAngle = 1.0;
+
 /// One approximate model against `nonlinear`.
 struct ModelComparison {
   std::string model;                ///< SPEC model name
   Trajectory trajectory;            ///< its motion at the common times
   double max_angle_error = 0.0;     ///< rad, max over the samples of max(|d theta|, |d phi|)
-  double final_angle_error = 0.0;   ///< rad, the same at the last sample
+                                    ///< (up to diverged_at, when it diverged)
+  double final_angle_error = 0.0;   ///< rad, the same at the last sample (meaningless if diverged)
+  /// s, when a linear model's angles first passed kDivergedAngle: from there on it has left
+  /// any small-motion meaning (it grows exponentially, to 1e300 and beyond), and its errors
+  /// and frequencies are not reported.
+  std::optional<double> diverged_at;
   MotionFrequencies frequencies;    ///< measured from its own trajectory
   std::optional<double> nutation_relative_error;    ///< |nutation - truth| / truth
   std::optional<double> precession_relative_error;  ///< |precession - truth| / |truth|

@@ -28,6 +28,9 @@ struct SweepAxis {
   double value(std::size_t i) const;
 };
 
+/// The most grid points a sweep may have (a 10^4 x 10^4 map; about 3 GB of CSV).
+inline constexpr std::size_t kMaxSweepPoints = 100'000'000;
+
 /// Parses "KEY=START:STOP:COUNT". Throws InvalidInput (key "vary") naming the rule broken.
 SweepAxis parse_sweep_axis(std::string_view text);
 
@@ -68,9 +71,10 @@ struct SweepVerdict {
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
 };
 
-/// Throws InvalidInput (key "vary", naming the grid point) unless every grid point gives a
-/// valid body and state, and, with options.nonlinear, the start is tilted (else the upright
-/// body never moves) by less than max_tilt.
+/// Throws InvalidInput (key "vary", naming the grid point) unless the grid has at most
+/// kMaxSweepPoints points and every grid point gives a valid body and state (checked at the
+/// grid's corners, which bound every rule), and, with options.nonlinear, the start is tilted
+/// (else the upright body never moves) by less than max_tilt.
 void validate_sweep(const Body& base, const InitialState& base_state,
                     const std::vector<SweepAxis>& axes, const SweepOptions& options);
 

@@ -149,6 +149,16 @@ std::string comparison_json(const Comparison& c) {
                       {"max_relative_energy_drift", c.summary.max_relative_energy_drift}};
   Json models = Json::object();
   for (const auto& m : c.models) {
+    if (m.diverged_at) {  // beyond any small-motion meaning: when, and the error until then
+      models[m.model] = {{"diverged_at", *m.diverged_at},
+                         {"max_angle_error", m.max_angle_error},
+                         {"final_angle_error", nullptr},
+                         {"nutation_frequency", nullptr},
+                         {"precession_rate", nullptr},
+                         {"nutation_relative_error", nullptr},
+                         {"precession_relative_error", nullptr}};
+      continue;
+    }
     models[m.model] = {{"max_angle_error", m.max_angle_error},
                        {"final_angle_error", m.final_angle_error},
                        {"nutation_frequency", optional_number(m.frequencies.nutation)},
@@ -162,12 +172,13 @@ std::string comparison_json(const Comparison& c) {
 
 std::string comparison_csv(const Comparison& c) {
   std::string out = "model,max_angle_error,final_angle_error,nutation_frequency,precession_rate,"
-                    "nutation_relative_error,precession_relative_error\n";
+                    "nutation_relative_error,precession_relative_error,diverged_at\n";
   auto cell = [](const std::optional<double>& x) { return x ? number(*x) : std::string(); };
-  out += fmt::format("nonlinear,0,0,{},{},0,0\n", cell(c.nonlinear_frequencies.nutation),
+  out += fmt::format("nonlinear,0,0,{},{},0,0,\n", cell(c.nonlinear_frequencies.nutation),
                      cell(c.nonlinear_frequencies.precession));
   for (const auto& m : c.models)
-    out += fmt::format("{},{},{},{},{},{},{}\n", m.model, number(m.max_angle_error), number(m.final_angle_error),
+    out += m.diverged_at ? fmt::format("{},{},,,,,,{}\n", m.model, number(m.max_angle_error), number(*m.diverged_at))
+                         : fmt::format("{},{},{},{},{},{},{},\n", m.model, number(m.max_angle_error), number(m.final_angle_error),
                        cell(m.frequencies.nutation), cell(m.frequencies.precession),
                        cell(m.nutation_relative_error), cell(m.precession_relative_error));
   return out;
@@ -183,6 +194,10 @@ std::string comparison_text(const Comparison& c, double t_end) {
   out << fmt::format("{:<15} {:>12} {:>12} {:>12} {:>10} {:>12} {:>10}\n", "nonlinear", "(truth)", "",
                      freq(c.nonlinear_frequencies.nutation), "", freq(c.nonlinear_frequencies.precession), "");
   for (const auto& m : c.models)
+    if (m.diverged_at)
+      out << fmt::format("{:<15} {:>12.3e}   diverges at t = {:.4g} s (its angles pass {:g} rad: no small motion "
+                         "left to compare)\n", m.model, m.max_angle_error, *m.diverged_at, kDivergedAngle);
+    else
     out << fmt::format("{:<15} {:>12.3e} {:>12.3e} {:>12} {:>10} {:>12} {:>10}\n", m.model, m.max_angle_error,
                        m.final_angle_error, freq(m.frequencies.nutation), rel(m.nutation_relative_error),
                        freq(m.frequencies.precession), rel(m.precession_relative_error));

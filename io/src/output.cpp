@@ -1,11 +1,14 @@
 #include "heavytop/io/output.hpp"
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -52,7 +55,73 @@ bool is_special(const std::string& path) {
   return ::stat(path.c_str(), &s) == 0 && !S_ISREG(s.st_mode);
 }
 
+// The temporary and lock files open now, for the signal handler: plain pointers to the paths' bytes
+// (owned by their OutputStream), read and unlinked with async-signal-safe calls only.
+constexpr std::size_t kSlots = 64;
+std::atomic<const char*> g_temporaries[kSlots];
+
+void track(const std::string& path) {
+  for (auto& slot : g_temporaries) {
+    const char* expected = nullptr;
+    if (slot.compare_exchange_strong(expected, path.c_str())) return;
+  }
+}
+
+void untrack(const std::string& path) {
+  for (auto& slot : g_temporaries) {
+    const char* expected = path.c_str();
+    if (slot.compare_exchange_strong(expected, nullptr)) return;
+  }
+}
+
+extern "C" void remove_temporaries_and_die(int signal) {
+  for (auto& slot : g_temporaries)
+    if (const char* path = slot.load()) ::unlink(path);
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
+
 }  // namespace
+
+void remove_temporaries_on_signals() {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) ::signal(signal, remove_temporaries_and_die);
+}
+
+OutputLock::OutputLock(const std::string& path, const std::string& key, const std::string& shown) {
+  const fs::path target(path);
+  lock_path_ = (target.parent_path() / ("." + target.filename().string() + ".lock")).string();
+  for (;;) {
+    fd_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd_ < 0) {
+      std::error_code ec;
+      if (!fs::is_directory(target.has_parent_path() ? target.parent_path() : fs::path("."), ec))
+        throw InvalidInput(key, fmt::format("the folder of '{}' does not exist", path));
+      throw InvalidInput(key, fmt::format("cannot write beside '{}': {}", path, std::strerror(errno)));
+    }
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      throw InvalidInput(key, fmt::format("'{}' is being written by another process; wait for it to finish",
+                                          shown.empty() ? path : shown));
+    }
+    // The lock file may have been removed by its previous holder between our open and flock:
+    // then ours is a stale inode, and we start again.
+    struct stat held {}, now {};
+    if (::fstat(fd_, &held) == 0 && ::stat(lock_path_.c_str(), &now) == 0 && held.st_ino == now.st_ino &&
+        held.st_dev == now.st_dev) {
+      track(lock_path_);
+      return;
+    }
+    ::close(fd_);
+  }
+}
+
+OutputLock::~OutputLock() {
+  if (fd_ < 0) return;
+  untrack(lock_path_);
+  ::unlink(lock_path_.c_str());
+  ::close(fd_);
+}
 
 OutputStream::OutputStream(std::string path, std::string key) : path_(std::move(path)), key_(std::move(key)) {
   if (path_.empty() || path_ == "-") {
@@ -69,8 +138,10 @@ OutputStream::OutputStream(std::string path, std::string key) : path_(std::move(
     owns_file_ = true;
     return;
   }
+  lock_.emplace(path_, key_);
   auto [temporary, fd] = temporary_beside(path_, key_);
   temporary_ = std::move(temporary);
+  track(temporary_);
   file_ = ::fdopen(fd, "wb");
   if (!file_) {
     ::close(fd);
@@ -82,7 +153,10 @@ OutputStream::OutputStream(std::string path, std::string key) : path_(std::move(
 
 OutputStream::~OutputStream() {
   if (owns_file_ && file_) std::fclose(file_);
-  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  if (!temporary_.empty()) {
+    if (!committed_) ::unlink(temporary_.c_str());
+    untrack(temporary_);
+  }
 }
 
 void OutputStream::write(std::string_view text) {
@@ -104,6 +178,13 @@ void OutputStream::commit() {
   committed_ = true;
 }
 
+bool is_regular_target(const std::string& path) { return !path.empty() && path != "-" && !is_special(path); }
+
+void copy_mode(const std::string& target, const std::string& file) {
+  struct stat existing {};
+  if (::stat(target.c_str(), &existing) == 0) ::chmod(file.c_str(), existing.st_mode & 07777);
+}
+
 void write_output(const std::string& path, const std::string& content, const std::string& key) {
   OutputStream out(path, key);
   out.write(content);
@@ -114,6 +195,11 @@ void write_atomically(const std::string& path, const std::function<void(const st
                       const std::string& key) {
   auto [temporary, fd] = temporary_beside(path, key);
   ::close(fd);
+  track(temporary);
+  struct Untrack {
+    const std::string& path;
+    ~Untrack() { untrack(path); }
+  } untrack_at_exit{temporary};
   try {
     fill(temporary);
     if (std::rename(temporary.c_str(), path.c_str()) != 0)

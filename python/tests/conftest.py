@@ -1,6 +1,7 @@
 """Shared helpers: the heavytop module and the command-line binary it is checked against.
 
-Run by ctest (test `python`), which sets PYTHONPATH to the module's folder and HEAVYTOP to the
+Run by ctest (test `python`), which sets PYTHONPATH to the build tree's folder that holds the
+package heavytop/ (build/python) and HEAVYTOP to the
 binary. By hand:  PYTHONPATH=build/python HEAVYTOP=build/heavytop /usr/bin/python3 -m pytest python/tests
 """
 import json

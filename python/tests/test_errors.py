@@ -1,5 +1,8 @@
 """Bad input raises heavytop.InvalidInput, a ValueError whose message is the command line's
-"<key>: <rule>" (the CLI prints "heavytop: error: <key>: <rule>" and exits 2)."""
+"<key>: <rule>" (the CLI prints "heavytop: error: <key>: <rule>" and exits 2), the key spelled
+as Python spells it: the keyword argument's name where the CLI names its flag (rtol for --rtol,
+t_end for --t-end), the configuration file's key for the body and the motion (body.A,
+motion.spin) as the CLI does."""
 import math
 import pickle
 
@@ -12,12 +15,27 @@ from conftest import BODIES, body_options, motion_options, needs_derive, run_cli
 GOOD = dict(A=1.0, B=1.3, C=2.0, mass=1.0, length=1.0, gravity=1.0)
 
 
+# The command line's flags and the keyword arguments that are the same setting in Python.
+PYTHON_NAME = {"--samples": "samples", "--t-end": "t_end", "--rtol": "rtol", "--atol": "atol",
+               "--max-steps": "max_steps", "--method": "method", "--model": "model", "--integrator": "integrator",
+               "--step": "step", "--order": "order", "--sequence": "sequence", "--vary": "vary",
+               "--horizon": "horizon", "--max-tilt": "max_tilt"}
+
+
 def cli_error(*args):
+    """The CLI's one-line message for `args`, its key in Python's spelling ("--t-end: ..." ->
+    "t_end: ..."); the rest of the line unchanged."""
     result = run_cli(*args, check=False)
     assert result.returncode == 2, (args, result.returncode, result.stderr)
     line = result.stderr.strip()
     assert line.startswith("heavytop: error: ") and "\n" not in line, line
-    return line[len("heavytop: error: "):]
+    message = line[len("heavytop: error: "):]
+    key, colon, rule = message.partition(": ")
+    assert colon, message
+    if key.startswith("--"):
+        assert key in PYTHON_NAME, f"no Python name for the CLI's {key}"
+        key = PYTHON_NAME[key]
+    return f"{key}: {rule}"
 
 
 @pytest.mark.parametrize("key,value", [
@@ -53,14 +71,14 @@ def test_body_is_immutable():
 @pytest.mark.parametrize("kwargs,cli_args,key", [
     (dict(spin=math.nan), ["--spin", "nan"], "motion.spin"),
     (dict(theta0=math.inf), ["--theta0", "inf"], "motion.theta0"),
-    (dict(samples=1), ["--samples", "1"], "--samples"),
-    (dict(samples=200_000_000), ["--samples", "200000000"], "--samples"),
-    (dict(t_end=0.0), ["--t-end", "0"], "--t-end"),
-    (dict(t_end=math.nan), ["--t-end", "nan"], "--t-end"),
-    (dict(rtol=-1.0), ["--rtol", "-1"], "--rtol"),
-    (dict(atol=0.0), ["--atol", "0"], "--atol"),
-    (dict(method="numeric"), ["--method", "numeric"], "--method"),  # nonlinear has no method
-    (dict(model="quadratic"), ["--model", "quadratic"], "--model"),
+    (dict(samples=1), ["--samples", "1"], "samples"),
+    (dict(samples=200_000_000), ["--samples", "200000000"], "samples"),
+    (dict(t_end=0.0), ["--t-end", "0"], "t_end"),
+    (dict(t_end=math.nan), ["--t-end", "nan"], "t_end"),
+    (dict(rtol=-1.0), ["--rtol", "-1"], "rtol"),
+    (dict(atol=0.0), ["--atol", "0"], "atol"),
+    (dict(method="numeric"), ["--method", "numeric"], "method"),  # nonlinear has no method
+    (dict(model="quadratic"), ["--model", "quadratic"], "model"),
     (dict(model="lagrange-exact"), ["--model", "lagrange-exact"], "body.B"),  # needs A = B
 ])
 def test_simulate_refuses_bad_input_naming_the_key(kwargs, cli_args, key):
@@ -75,7 +93,7 @@ def test_simulate_refuses_bad_input_naming_the_key(kwargs, cli_args, key):
 
 
 def test_method_must_be_analytic_or_numeric():
-    with pytest.raises(ValueError, match=r"^--method: must be analytic or numeric$"):
+    with pytest.raises(ValueError, match=r"^method: must be analytic or numeric$"):
         heavytop.simulate(BODIES["reference"], "first-order", method="exact")
 
 
@@ -83,7 +101,7 @@ def test_stability_and_compare_refuse_bad_input():
     body = BODIES["reference"]
     with pytest.raises(ValueError, match=r"^motion\.spin: must be a finite number$"):
         heavytop.stability(body, math.nan)
-    with pytest.raises(ValueError, match=r"^--samples: must be an integer in \[3, 100000000\]$"):
+    with pytest.raises(ValueError, match=r"^samples: must be an integer in \[3, 100000000\]$"):
         heavytop.compare(body, spin=1.0, theta0=0.01, samples=2)
     with pytest.raises(ValueError, match=r"^motion\.phi_rate0: "):
         heavytop.compare(body, spin=1.0, phi_rate0=math.nan)
@@ -99,7 +117,7 @@ def test_derive_refuses_bad_input_as_the_cli(kwargs, cli_args):
     with pytest.raises(ValueError) as error:
         heavytop.derive(**kwargs)
     assert str(error.value) == cli_error("derive", *cli_args, "--format", "json")
-    with pytest.raises(ValueError, match=r"^--order: must be 1 or 2$"):
+    with pytest.raises(ValueError, match=r"^order: must be 1 or 2$"):
         heavytop.derive_rotations(0)
 
 
@@ -107,17 +125,17 @@ def test_sweep_refuses_bad_input_naming_the_key():
     body = BODIES["reference"]
     values = np.linspace(0.5, 1.5, 3)
     cases = [
-        (dict(vary={}), "--vary: give one or two parameters"),
-        (dict(vary={"A": values, "B": values, "C": values}), "--vary: give one or two parameters"),
-        (dict(vary={"D": values}), "--vary: unknown key 'D'"),
-        (dict(vary={"spin": []}), "--vary: the values of 'spin' must be a 1-D array"),
-        (dict(vary={"spin": np.ones((2, 2))}), "--vary: the values of 'spin' must be a 1-D array"),
-        (dict(vary={"spin": ["fast"]}), "--vary: the values of 'spin' must be a 1-D array"),
-        (dict(vary={"spin": [1.0, math.nan]}), "--vary: at spin=nan the body breaks motion.spin: must be a finite number"),
-        (dict(vary={"C/A": [1.0, 2.5]}), "--vary: at C/A=2.5 the body breaks body.C: a real body has A + B >= C"),
-        (dict(vary={"spin": values}, horizon=0.0, nonlinear=True), "--horizon: must be finite and > 0"),
+        (dict(vary={}), "vary: give one or two parameters"),
+        (dict(vary={"A": values, "B": values, "C": values}), "vary: give one or two parameters"),
+        (dict(vary={"D": values}), "vary: unknown key 'D'"),
+        (dict(vary={"spin": []}), "vary: the values of 'spin' must be a 1-D array"),
+        (dict(vary={"spin": np.ones((2, 2))}), "vary: the values of 'spin' must be a 1-D array"),
+        (dict(vary={"spin": ["fast"]}), "vary: the values of 'spin' must be a 1-D array"),
+        (dict(vary={"spin": [1.0, math.nan]}), "vary: at spin=nan the body breaks motion.spin: must be a finite number"),
+        (dict(vary={"C/A": [1.0, 2.5]}), "vary: at C/A=2.5 the body breaks body.C: a real body has A + B >= C"),
+        (dict(vary={"spin": values}, horizon=0.0, nonlinear=True), "horizon: must be finite and > 0"),
         (dict(vary={"spin": values}, nonlinear=True), "motion.theta0: a nonlinear sweep needs a tilted start"),
-        (dict(vary={"spin": values}, theta0=0.6, nonlinear=True), "--max-tilt: must exceed the initial tilt"),
+        (dict(vary={"spin": values}, theta0=0.6, nonlinear=True), "max_tilt: must exceed the initial tilt"),
     ]
     for kwargs, message in cases:
         with pytest.raises(ValueError) as error:

@@ -1,10 +1,12 @@
 #include "heavytop/report/figures.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -39,27 +41,38 @@ std::string line_style(const std::string& model) {
   return fmt::format("lc rgb '{}' dt {} lw {}", s.color, s.dash, s.width);
 }
 
-/// A scratch folder for data and scripts, removed when done.
+/// The folder a figure is drawn in (data, script, log and the PNG and SVG it makes). gnuplot
+/// runs inside it and every path in a script is a plain relative name, so no path a user
+/// chose (a folder name with a quote, say) is ever pasted into a script.
 class Scratch {
  public:
-  Scratch() {
-    std::string pattern = (fs::temp_directory_path() / "heavytop-plot-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw Failure("cannot create a temporary folder for figures");
-    path_ = pattern;
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (fs::path(path_) / name).string(); }
+  explicit Scratch(std::string dir) : dir_(std::move(dir)) {}
+  std::string file(const std::string& name) const { return name; }        // as the script names it
+  std::string path(const std::string& name) const { return (fs::path(dir_) / name).string(); }  // for us
+  const std::string& dir() const { return dir_; }
 
  private:
-  std::string path_;
+  std::string dir_;
 };
 
-void run_gnuplot(const std::string& script, const std::string& log) {
+/// One line from gnuplot's log: its non-empty lines joined (gnuplot puts the message after a
+/// blank line and the offending command).
+std::string log_line(const std::string& log) {
+  std::ifstream in(log);
+  std::string text, line;
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t^");
+    if (first == std::string::npos) continue;
+    text += (text.empty() ? "" : " / ") + line.substr(first);
+  }
+  return text.size() > 300 ? text.substr(0, 300) + "..." : text.empty() ? "no message" : text;
+}
+
+void run_gnuplot(const Scratch& scratch, const std::string& script, const std::string& log) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, scratch.dir().c_str());
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   std::string program = "gnuplot";
@@ -69,59 +82,42 @@ void run_gnuplot(const std::string& script, const std::string& log) {
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw Failure("gnuplot not found: install Debian's gnuplot-nox (scripts/install-deps.sh)");
   int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::ifstream in(log);
-    std::string first;
-    std::getline(in, first);
-    throw Failure(fmt::format("gnuplot failed: {}", first));
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw Failure(fmt::format("gnuplot failed on the figure '{}': {}", script, log_line(scratch.path(log))));
 }
 
-/// Renders `body` (gnuplot commands) to DIR/NAME.png and DIR/NAME.svg, each through a
-/// temporary name and a rename.
-Figure render(const std::string& dir, const std::string& name, const std::string& caption,
-              const std::string& body, const Scratch& scratch, int width = 1400, int height = 900) {
-  const std::string body_file = scratch.file(name + ".body.gp");
-  std::ofstream(body_file) << body;
-  const std::string png = (fs::path(dir) / (name + ".png")).string();
-  const std::string svg = (fs::path(dir) / (name + ".svg")).string();
-  const std::string png_tmp = png + ".tmp", svg_tmp = svg + ".tmp";
-  const std::string script = scratch.file(name + ".gp");
-  std::ofstream(script) << fmt::format(
+/// Renders `body` (gnuplot commands) to NAME.png and NAME.svg in the scratch folder.
+Figure render(const std::string& name, const std::string& caption, const std::string& body, const Scratch& scratch,
+              int width = 1400, int height = 900) {
+  const std::string body_file = name + ".body.gp";
+  std::ofstream(scratch.path(body_file)) << body;
+  const std::string script = name + ".gp";
+  std::ofstream(scratch.path(script)) << fmt::format(
       "set terminal pngcairo size {w},{h} enhanced font 'DejaVu Sans,18' linewidth 1.5\n"
-      "set output '{png}'\nload '{body}'\nunset output\n"
+      "set output '{name}.png'\nload '{body}'\nunset output\n"
       "set terminal svg size {w},{h} enhanced font 'DejaVu Sans,18' linewidth 1.5 background rgb 'white'\n"
-      "set output '{svg}'\nload '{body}'\nunset output\n",
-      fmt::arg("w", width), fmt::arg("h", height), fmt::arg("png", png_tmp), fmt::arg("svg", svg_tmp),
-      fmt::arg("body", body_file));
-  try {
-    run_gnuplot(script, scratch.file(name + ".log"));
-    fs::rename(png_tmp, png);
-    fs::rename(svg_tmp, svg);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(png_tmp, ignored);
-    fs::remove(svg_tmp, ignored);
-    throw;
-  }
+      "set output '{name}.svg'\nload '{body}'\nunset output\n",
+      fmt::arg("w", width), fmt::arg("h", height), fmt::arg("name", name), fmt::arg("body", body_file));
+  run_gnuplot(scratch, script, name + ".log");
   return {name, caption};
 }
 
 /// Writes the models' trajectories as t theta phi error, one file each; returns their paths.
 std::vector<std::pair<std::string, std::string>> write_trajectories(const Comparison& c, const Scratch& scratch) {
   std::vector<std::pair<std::string, std::string>> files;
-  auto write = [&](const std::string& model, const Trajectory& tr) {
+  auto write = [&](const std::string& model, const Trajectory& tr, std::optional<double> until = std::nullopt) {
     const std::string path = scratch.file(model + ".dat");
-    std::ofstream out(path);
-    for (std::size_t i = 0; i < tr.size(); ++i) {
+    std::ofstream out(scratch.path(path));
+    for (std::size_t i = 0; i < tr.size() && !(until && tr.t[i] >= *until); ++i) {
       const double err = std::max(std::abs(tr.theta[i] - c.nonlinear.theta[i]), std::abs(tr.phi[i] - c.nonlinear.phi[i]));
       out << fmt::format("{} {} {} {}\n", tr.t[i], tr.theta[i], tr.phi[i], err);
     }
     files.emplace_back(model, path);
   };
   write("nonlinear", c.nonlinear);
-  for (const auto& m : c.models) write(m.model, m.trajectory);
+  for (const auto& m : c.models) write(m.model, m.trajectory, m.diverged_at);  // a diverged model up to then
   return files;
 }
 
@@ -147,7 +143,7 @@ std::string plot_list(const std::vector<std::pair<std::string, std::string>>& fi
 }  // namespace
 
 std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
-  Scratch scratch;
+  const Scratch scratch(dir);
   const auto files = write_trajectories(c, scratch);  // once, for all three figures
   const double r = angle_range(c);
   std::vector<Figure> figures;
@@ -161,7 +157,7 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   angles += "set ylabel 'phi (rad)'\nset xlabel 't (s)'\nunset key\n";
   angles += "plot " + plot_list(files, "1:3");
   angles += "unset multiplot\n";
-  figures.push_back(render(dir, "angles", "theta(t) and phi(t) of every model; the nonlinear body (black) is the truth, and models that diverge leave the chart.", angles, scratch, 1400, 1000));
+  figures.push_back(render("angles", "theta(t) and phi(t) of every model; the nonlinear body (black) is the truth, and models that diverge leave the chart.", angles, scratch, 1400, 1000));
 
   std::string path = fmt::format(
       "set title 'Path of the axis tip: nutation loops and cusps'\nset grid\nset size ratio -1\n"
@@ -170,25 +166,32 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
       "set xlabel 'theta (rad)'\nset ylabel 'phi (rad)'\nplot ",
       -r, r);
   path += plot_list(files, "2:3");
-  figures.push_back(render(dir, "axis-path", "The tip of the axis seen from above (theta against phi), every model.", path, scratch, 1300, 1000));
+  figures.push_back(render("axis-path", "The tip of the axis seen from above (theta against phi), every model.", path, scratch, 1300, 1000));
 
   std::string errors =
       "set title 'Error of each model against the nonlinear body'\nset grid\nset logscale y\n"
       "set format y '10^{%L}'\nset key outside right top\nset xlabel 't (s)'\n"
       "set ylabel 'max(|d theta|, |d phi|) (rad)'\nplot ";
-  errors += plot_list(files, "1:($4 > 1e-17 ? $4 : 1/0)", true);
-  figures.push_back(render(dir, "errors", "The angle error of each model against time, on a log scale.", errors, scratch));
+  // A model exact to rounding everywhere (the sleeping top: nothing moves) has no point to
+  // draw on a log scale; then the chart says so instead of failing.
+  double largest = 0.0;
+  for (const auto& m : c.models)
+    if (!m.diverged_at) largest = std::max(largest, m.max_angle_error);
+  if (largest > 1e-17) errors += plot_list(files, "1:($4 > 1e-17 ? $4 : 1/0)", true);
+  else errors += fmt::format("[0:{}] [1e-18:1e-15] 1e-17 with lines lc rgb '#888888' title 'every model: error below 1e-17 rad'\n",
+                             c.nonlinear.t.empty() || c.nonlinear.t.back() <= 0.0 ? 1.0 : c.nonlinear.t.back());
+  figures.push_back(render("errors", "The angle error of each model against time, on a log scale.", errors, scratch));
   return figures;
 }
 
 Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state) {
-  Scratch scratch;
+  const Scratch scratch(dir);
   // B/A over every value a real body allows with A and C held, |C - A| <= B <= C + A.
   const auto [lo, hi] = realizable_ratio_range(body);
   const int n = 300;
   double top = std::abs(state.spin);
   std::map<std::string, std::ofstream> ends;
-  for (LinearModelKind kind : kLinearModels) ends[std::string(name(kind))].open(scratch.file(std::string(name(kind)) + ".ends"));
+  for (LinearModelKind kind : kLinearModels) ends[std::string(name(kind))].open(scratch.path(std::string(name(kind)) + ".ends"));
   for (int i = 0; i < n; ++i) {
     const double ratio = lo + (hi - lo) * i / (n - 1);
     Body b = body;
@@ -215,7 +218,7 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
   const double scale = std::isfinite(gravity_time(body)) ? gravity_time(body) : 1.0;
   options.horizon = 300.0 * scale;
   options.integrator.rtol = options.integrator.atol = 1e-8;
-  std::ofstream up(scratch.file("up.dat")), falls(scratch.file("falls.dat"));
+  std::ofstream up(scratch.path("up.dat")), falls(scratch.path("falls.dat"));
   const auto verdicts = sweep_verdicts(body, start, axes, options, 0, grid_size(axes));
   for (std::size_t i = 0; i < verdicts.size(); ++i) {
     const auto point = grid_values(axes, i);
@@ -237,7 +240,7 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
       body.A, body.C, lo, hi, top, scratch.file("first-order.ends"), scratch.file("body-fixed.ends"),
       scratch.file("linearized.ends"), scratch.file("up.dat"), scratch.file("falls.dat"), body.B / body.A,
       std::abs(state.spin));
-  return render(dir, "stability-diagram",
+  return render("stability-diagram",
                 "Ends of the stable spin intervals of each linear model as B/A varies, and the nonlinear body's "
                 "verdict (started 1e-3 rad off vertical) on a grid: where (4) and the exact linearisation part, "
                 "the paper's (9) is wrong (erratum E3).",
@@ -246,10 +249,10 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
 
 Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
                       const std::vector<SweepVerdict>& verdicts) {
-  Scratch scratch;
+  const Scratch scratch(dir);
   const std::string data = scratch.file("map.dat");
   {
-    std::ofstream out(data);
+    std::ofstream out(scratch.path(data));
     for (std::size_t i = 0; i < verdicts.size(); ++i) {
       // 0 neither, 1 only (4) (a false promise), 2 only the linearisation ((9) too strict), 3 both.
       const int category = int(verdicts[i].linear[0]) + 2 * int(verdicts[i].linear[2]);
@@ -273,7 +276,7 @@ Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes
       "set colorbox user origin 0.72,0.15 size 0.03,0.7\nset rmargin at screen 0.70\n"
       "plot '{}' using 1:2:3 with image notitle\n",
       label(axes[0].key), label(axes[1].key), data);
-  return render(dir, "stability-map",
+  return render("stability-map",
                 "Each grid point coloured by the verdicts of (4) and of the exact linearisation: red where the "
                 "paper promises a stability that is not there, blue where it is too strict.",
                 plot, scratch, 1500, 950);

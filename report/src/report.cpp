@@ -1,4 +1,5 @@
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <sstream>
@@ -15,6 +16,7 @@
 
 namespace heavytop::report {
 using io::write_output;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -114,18 +116,43 @@ figure { margin: 1.5em 0; } figure img { width: 100%; border: 1px solid #ddd; } 
 
 }  // namespace
 
+namespace {
+
+/// A private folder in the system's temporary directory, removed with everything in it.
+class Staging {
+ public:
+  Staging() {
+    std::string pattern = (fs::temp_directory_path() / "heavytop-report-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw io::Failure("cannot create a temporary folder for the report's figures");
+    path_ = pattern;
+  }
+  ~Staging() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace
+
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end) {
-  namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir)) throw InvalidInput("--output", fmt::format("cannot create the folder '{}'", dir));
+  // One report into a folder at a time; everything is made first, in a staging folder, and
+  // only then put in place, so a failure leaves the folder as it was.
+  const io::OutputLock lock((fs::path(dir) / "report").string(), "--output", dir);
+  const Staging staging;
 
   const auto reports = analyse_stability(body, state.spin);
   const double horizon = t_end.value_or(natural_horizon(body, state.spin));
   const Comparison c = compare_models(body, state, sample_times(horizon, 4001));
 
-  std::vector<Figure> figures = plot_motion(dir, c);
-  figures.push_back(plot_stability_diagram(dir, body, state));
+  std::vector<Figure> figures = plot_motion(staging.path(), c);
+  figures.push_back(plot_stability_diagram(staging.path(), body, state));
   // The stability map: B/A over the values a real body allows, spin up to well past the truth's threshold.
   const auto [lo, hi] = realizable_ratio_range(body);
   double top = std::max(2.0 * std::abs(state.spin), 1e-9);
@@ -133,14 +160,15 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
     if (r.kind != LinearModelKind::BodyFixed && r.critical) top = std::max(top, 2.0 * *r.critical);
   const std::vector<SweepAxis> axes{{"B/A", lo, hi, 200}, {"spin", 0.0, top, 200}};
   const auto verdicts = sweep_verdicts(body, state, axes, SweepOptions{}, 0, grid_size(axes));
-  figures.push_back(plot_sweep_map(dir, axes, verdicts));
+  figures.push_back(plot_sweep_map(staging.path(), axes, verdicts));
 
-  write_output((fs::path(dir) / "stability.json").string(), io::stability_json(body, state.spin, reports));
-  write_output((fs::path(dir) / "comparison.json").string(), io::comparison_json(c));
-  write_output((fs::path(dir) / "comparison.csv").string(), io::comparison_csv(c));
-  write_output((fs::path(dir) / "trajectories.csv").string(), all_trajectories_csv(c));
-  write_output((fs::path(dir) / "stability-map.csv").string(),
-               io::sweep_csv_header(axes, false) + io::sweep_csv_rows(axes, 0, verdicts));
+  std::vector<std::pair<std::string, std::string>> data = {
+      {"stability.json", io::stability_json(body, state.spin, reports)},
+      {"comparison.json", io::comparison_json(c)},
+      {"comparison.csv", io::comparison_csv(c)},
+      {"trajectories.csv", all_trajectories_csv(c)},
+      {"stability-map.csv", io::sweep_csv_header(axes, false) + io::sweep_csv_rows(axes, 0, verdicts)},
+  };
 
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop report</title><style>"
@@ -172,7 +200,17 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
           "<code>heavytop compare</code></li><li><a href='trajectories.csv'>trajectories.csv</a>: theta, phi of every "
           "model (rad) against t (s)</li><li><a href='stability-map.csv'>stability-map.csv</a>: the map's verdicts</li></ul>\n"
           "<p><small>Made by heavytop. Units SI; angles as in SPEC.md section 2.</small></p>\n</body></html>\n";
-  write_output((fs::path(dir) / "report.html").string(), html.str());
+  data.emplace_back("report.html", html.str());
+
+  // Everything is made: put it in place, each file by a temporary name and a rename.
+  for (const Figure& f : figures)
+    for (const char* extension : {".png", ".svg"}) {
+      const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();
+      io::write_atomically((fs::path(dir) / (f.name + extension)).string(), [&](const std::string& to) {
+        fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+      });
+    }
+  for (const auto& [name, content] : data) write_output((fs::path(dir) / name).string(), content);
 }
 
 }  // namespace heavytop::report

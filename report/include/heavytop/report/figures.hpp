@@ -11,7 +11,10 @@
 
 namespace heavytop::report {
 
-/// The files a figure was written to (both beside each other in the output folder).
+/// Each function draws into `dir`, a private scratch folder (data files, gnuplot scripts,
+/// NAME.png and NAME.svg): gnuplot runs inside it on relative names only.
+
+/// The files a figure was written to: DIR/NAME.png and DIR/NAME.svg.
 struct Figure {
   std::string name;     ///< e.g. "angles"; files name.png and name.svg
   std::string caption;  ///< one sentence for a reader

@@ -1,0 +1,23 @@
+#pragma once
+/// \file
+/// The umbrella header: every public header of heavytop's numeric core (heavytop::core), so
+/// that `#include <heavytop/heavytop.hpp>` gives the whole API. The symbolic derivations
+/// (heavytop::symbolic, GiNaC) are not included; include <heavytop/symbolic/derive.hpp> and
+/// friends for those. A new public header of the core belongs here too (the package test
+/// checks that every installed heavytop/*.hpp is listed).
+
+#include "heavytop/version.hpp"
+
+#include "heavytop/body.hpp"            // Body, validate(), example_toy_top()
+#include "heavytop/state.hpp"           // InitialState, Trajectory
+#include "heavytop/frames.hpp"          // the frames and angles (SPEC section 2)
+#include "heavytop/linear_models.hpp"   // the three linear models as data
+#include "heavytop/stability.hpp"       // linear stability and the stable spins
+#include "heavytop/linear_motion.hpp"   // motion of the linear models
+#include "heavytop/nonlinear.hpp"       // the full rigid body, integrated adaptively
+#include "heavytop/splitting.hpp"       // the structure-preserving splitting integrator
+#include "heavytop/lagrange_exact.hpp"  // the symmetric top's motion in closed form
+#include "heavytop/compare.hpp"         // the models against each other
+#include "heavytop/sweep.hpp"           // sweeps across machines
+#include "heavytop/simulate.hpp"        // simulate(Model, ...): one entry point for every model
+#include "heavytop/rigid_body.hpp"      // RigidBodySystem for odeint-style steppers

@@ -1,0 +1,46 @@
+"""heavytop: the heavy top (a rigid body turning about a fixed point O in uniform gravity,
+spinning fast about its axis), its approximate models, their stability and motion.
+
+Units are SI everywhere: kg, m, s, rad (rates rad/s). The conventions are SPEC.md's:
+
+  Fixed frame (xi, eta, zeta), zeta vertical and up. Body frame: principal axes x, y, z
+  through O, z the spin axis. k = the unit vector of the spin axis, and the paper's angles are
+      phi   = -asin(k_eta)   (tilt about xi)
+      theta = atan2(k_xi, k_zeta)   (tilt towards xi)
+  so k = (sin theta cos phi, -sin phi, cos theta cos phi). The initial state (spin w0,
+  theta0, phi0, theta_rate0, phi_rate0) starts the body with its axes the columns of
+  Q(phi0, theta0) and angular velocity phi_rate0 (cos theta0, 0, -sin theta0)
+  + theta_rate0 (0, 1, 0) + spin k0 in the fixed frame (the linear models take
+  (phi, theta, phi', theta') as given).
+
+Models (MODELS): "first-order" (the paper's (4)), "body-fixed" (the paper's (5)), "linearized"
+(the exact linearisation about the upright rotation), "nonlinear" (the full body, the truth),
+"lagrange-exact" (a symmetric body, A = B, only: the nonlinear motion in closed form).
+
+Functions return typed results (heavytop.results) that hold what the command line prints:
+stability(), compare() and derive() results have attributes (result.models["linearized"]
+.critical_spin) and read as json.loads of `heavytop stability|compare|derive --format json`
+(result["models"], result.to_dict()); simulate() and sweep() results hold NumPy arrays, one
+per CSV column of `heavytop simulate|sweep` (result.theta, result["theta"]). Bad input raises
+heavytop.InvalidInput (a ValueError) with a one-line "<key>: <rule>", the key being the
+keyword argument's name ("rtol: must be a finite number in [1e-15, 1]", "t_end: ...") or, for
+the body and the motion, the configuration file's key ("body.A", "motion.spin").
+
+    import heavytop
+    top = heavytop.example_toy_top()
+    heavytop.stability(top, 200.0).models["linearized"].critical_spin           # rad/s
+    m = heavytop.simulate(top, "nonlinear", spin=200.0, theta0=0.05, t_end=1.0, samples=2001)
+    m.t, m.theta                                                               # s, rad
+"""
+from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
+from ._api import compare, derive, derive_check, derive_rotations, simulate, stability, sweep
+from . import results
+from .results import (CheckRow, Comparison, Derivation, DerivationCheck, ModelComparison, ModelStability,
+                      NonlinearReference, Rotations, SimulationSummary, Stability, StabilityMap, Trajectory)
+
+__all__ = [
+    "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
+    "stability", "simulate", "compare", "sweep", "grid_values", "derive", "derive_rotations", "derive_check",
+    "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
+    "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow",
+]

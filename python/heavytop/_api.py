@@ -1,0 +1,216 @@
+"""heavytop's functions: their defaults and documentation, over heavytop._core (which binds the
+C++ library) and the typed results of heavytop.results."""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Literal, Optional
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+from ._core import Body
+from .results import Comparison, Derivation, DerivationCheck, Rotations, Stability, StabilityMap, Trajectory
+from .results import SimulationSummary
+
+__all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotations", "derive_check"]
+
+ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
+LinearMethod = Literal["analytic", "numeric"]
+IntegratorName = Literal["adaptive", "splitting"]
+DeriveMethod = Literal["euler-moving", "euler-fixed", "euler-body", "lagrange"]
+Sequence = Literal["phi-theta", "theta-phi"]
+
+
+def stability(body: Body, spin: float) -> Stability:
+    """Linear stability of the first-order, body-fixed and linearized models at spin w0.
+
+        body   Body (SI units)
+        spin   rad/s, the spin w0 about the body axis
+
+    Returns a Stability: .body, .spin (rad/s), .models[NAME] (NAME first-order, body-fixed,
+    linearized) with .stable, .critical_spin (rad/s or None), .stable_spin_intervals
+    ((lo, hi or None) pairs, rad/s), .eigenvalues (complex, 1/s), .frequencies (rad/s, when
+    stable), .reason. It is also a Mapping: result["models"] and result.to_dict() are
+    json.loads of `heavytop stability --format json` for the same input, {"body": {...},
+    "spin": w0, "models": {"first-order": {"stable": bool, "critical_spin": ...,
+    "stable_spin_intervals": [[lo, hi], ...], "eigenvalues": [[re, im], ...],
+    "frequencies": [...], "reason": str}, "body-fixed": {...}, "linearized": {...}}}. The
+    linearized model's eigenvalues are those of its body-frame system.
+
+    Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".
+    """
+    return Stability.from_json(_core.stability(body, spin))
+
+
+def simulate(body: Body, model: ModelName = "nonlinear", *, spin: float = 0.0, theta0: float = 0.0,
+             phi0: float = 0.0, theta_rate0: float = 0.0, phi_rate0: float = 0.0, t_end: float = 10.0,
+             samples: int = 1001, method: Optional[LinearMethod] = None,
+             integrator: Optional[IntegratorName] = None, rtol: Optional[float] = None,
+             atol: Optional[float] = None, step: Optional[float] = None, order: Optional[Literal[2, 4]] = None,
+             max_steps: Optional[int] = None) -> Trajectory:
+    """The motion of one model: t, theta, phi and their rates (SI units), as NumPy arrays.
+
+    The same computation as `heavytop simulate --format csv`, column for column (the
+    command's options in brackets):
+
+        body          Body: A, B, C (kg m^2), mass (kg), length R (m), gravity (m/s^2)
+        model         "first-order" | "body-fixed" | "linearized" | "nonlinear" (default)
+                      | "lagrange-exact" (A = B)                                  [--model]
+
+      Motion (keyword only):
+        spin          rad/s, spin w0 about the body axis (default 0)
+        theta0        rad, initial theta (tilt towards xi)
+        phi0          rad, initial phi (tilt about xi)
+        theta_rate0   rad/s, initial theta'
+        phi_rate0     rad/s, initial phi'
+
+      Options (keyword only):
+        t_end         s, end of the simulated interval (> 0; default 10)          [--t-end]
+        samples       rows, at t_i = i t_end / (samples - 1) (>= 2; default 1001)  [--samples]
+        method        linear models: "analytic" (closed form, the default) |
+                      "numeric" (matrix exponential); linear models only          [--method]
+        integrator    nonlinear: "adaptive" (Dormand-Prince 5(4) with error
+                      control, the default) | "splitting" (fixed step,
+                      structure-preserving: bounded energy error over long runs)  [--integrator]
+        rtol          nonlinear: relative tolerance per step (default 1e-12)      [--rtol]
+        atol          nonlinear: absolute tolerance per step (default 1e-12)      [--atol]
+        step          s, splitting: the fixed step (default 1e-3)                 [--step]
+        order         splitting: 2 (Strang, the default) or 4 (Suzuki)            [--order]
+        max_steps     nonlinear: the most steps a run may take before it fails
+                      (default 1e8 adaptive, 1e9 splitting)
+
+    Returns a Trajectory: float64 arrays of length `samples`, in the CSV's column order, as
+    attributes and by name (result.theta is result["theta"]):
+        t (s), theta (rad), phi (rad), theta_rate (rad/s), phi_rate (rad/s),
+    and for "nonlinear" also energy (J), vertical_momentum (kg m^2/s, about zeta),
+    axial_momentum (kg m^2/s, C w3; conserved only when A == B), energy_drift,
+    vertical_momentum_drift, axial_momentum_drift (each minus its value at t = 0);
+    .columns (their names), .summary (a SimulationSummary: the solver, its steps, the drift of
+    the first integrals), .to_dict() (the dict of arrays). theta, phi are SPEC section 2's exact
+    angles of the spin axis for every model.
+
+    The arrays are filled in C++ with the GIL released; Ctrl-C (a Jupyter interrupt) stops a
+    run within 0.1 s and raises KeyboardInterrupt. Bad input raises InvalidInput (a
+    ValueError) naming the keyword argument, or the body's and motion's key as the
+    configuration file does: "motion.spin: must be a finite number", "samples: must be an
+    integer in [2, 100000000]", "rtol: must be a finite number in [1e-15, 1]". A run that
+    fails (an integrator that cannot meet its tolerance, or exceeds max_steps) raises
+    RuntimeError with the summary's message (the error's .summary holds the summary).
+    """
+    columns, summary = _core.simulate(body, model, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                                      phi_rate0=phi_rate0, t_end=t_end, samples=samples, method=method,
+                                      integrator=integrator, rtol=rtol, atol=atol, step=step, order=order,
+                                      max_steps=max_steps)
+    summary = SimulationSummary.from_json(summary)
+    if not summary.ok:
+        error = RuntimeError(summary.message)
+        error.summary = summary  # type: ignore[attr-defined]
+        raise error
+    return Trajectory(columns, summary)
+
+
+def compare(body: Body, *, spin: float = 0.0, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
+            phi_rate0: float = 0.0, t_end: float = 10.0, samples: int = 10001, rtol: Optional[float] = None,
+            atol: Optional[float] = None) -> Comparison:
+    """Every approximate model against the full nonlinear body, from one state over one horizon.
+
+        body                      Body (SI units)
+        spin, theta0, phi0,       the initial state (rad/s, rad, rad, rad/s, rad/s; keyword only,
+        theta_rate0, phi_rate0    default 0)
+        t_end                     s, horizon (> 0; default 10)                     [--t-end]
+        samples                   samples over the horizon (>= 3; default 10001)   [--samples]
+        rtol, atol                nonlinear: tolerances per step (default 1e-12)   [--rtol, --atol]
+
+    Returns a Comparison: .nonlinear (the truth: .nutation_frequency, .precession_rate (rad/s),
+    .steps, .max_relative_energy_drift) and .models[NAME] (first-order, body-fixed,
+    linearized, and lagrange-exact when A = B) with .max_angle_error, .final_angle_error (rad,
+    the larger of |d theta| and |d phi|), .nutation_frequency, .precession_rate (rad/s),
+    .nutation_relative_error, .precession_relative_error. As a Mapping and by .to_dict() it is
+    json.loads of `heavytop compare --format json`. Runs with the GIL released; Ctrl-C stops it.
+    Bad input raises InvalidInput (a ValueError): "samples: must be an integer in [3, 100000000]".
+    """
+    return Comparison.from_json(_core.compare(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                                              phi_rate0=phi_rate0, t_end=t_end, samples=samples, rtol=rtol,
+                                              atol=atol))
+
+
+def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, theta0: float = 0.0,
+          phi0: float = 0.0, theta_rate0: float = 0.0, phi_rate0: float = 0.0, nonlinear: bool = False,
+          horizon: float = 100.0, max_tilt: float = 0.5, rtol: Optional[float] = None,
+          atol: Optional[float] = None) -> StabilityMap:
+    """A stability map: each model's verdict over a grid of one or two parameters.
+
+    The computation of `heavytop sweep --vary KEY=START:STOP:COUNT [--vary ...]`, in C++ on every
+    core with the GIL released.
+
+        body        Body (SI units): the base the grid varies
+        vary        {KEY: values} with one or two keys, each a body key (A, B, C, mass, gravity,
+                    length), "spin", or a ratio "B/A" or "C/A" (the numerator changes, the
+                    denominator is held at the body's value); values a 1-D array (SI units).
+                    The grid is the product of the arrays, the first key slowest (dict order).
+      Motion (keyword only): spin (rad/s), theta0, phi0 (rad), theta_rate0, phi_rate0 (rad/s),
+                    the base state (default 0)
+      Options (keyword only):
+        nonlinear   also judge each point by a nonlinear simulation (needs a tilted start)
+        horizon     s, simulated time of each nonlinear run (> 0; default 100)   [--horizon]
+        max_tilt    rad, a nonlinear run is stable if its tilt stays <= this
+                    (default 0.5)                                                [--max-tilt]
+        rtol, atol  nonlinear: tolerances per step (default 1e-12)              [--rtol, --atol]
+
+    Returns a StabilityMap, one array per CSV column, one element per grid point (row-major, the
+    first key slowest): each key's values (float64), then "first-order", "body-fixed",
+    "linearized" and, when asked, "nonlinear" (bool: stable); result["linearized"],
+    .parameters, .verdicts, .shape (the grid's), .grid(NAME) (a column reshaped to the grid),
+    .to_dict() (the dict of arrays).
+
+    Any values are judged exactly as given. When every array is the command line's
+    START:STOP:COUNT grid (grid_values(start, stop, count), bit for bit) the sweep makes the
+    command line's own calls (heavytop::sweep_verdicts over blocks of the grid); otherwise each
+    point is judged by that same routine as a grid of one point. Either way the points run in
+    parallel, one thread per core, and the verdicts are the same at the same values. Ctrl-C (a
+    Jupyter interrupt) stops it within a block and raises KeyboardInterrupt.
+    Bad input raises InvalidInput (ValueError) naming the keyword argument ("vary: unknown key
+    'D'", "max_tilt: must exceed the initial tilt").
+    """
+    if isinstance(vary, Mapping):
+        vary = dict(vary)
+    columns = _core.sweep(body, vary, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                          phi_rate0=phi_rate0, nonlinear=nonlinear, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
+                          atol=atol)
+    shape = tuple(int(np.size(values)) for values in vary.values())  # checked by the core: 1-D arrays
+    return StabilityMap(columns, shape)
+
+
+def derive(method: DeriveMethod = "euler-moving", sequence: Sequence = "phi-theta",
+           order: Literal[1, 2] = 1) -> Derivation:
+    """The paper's linear model derived symbolically (GiNaC): M q'' + G q' + K q = 0, q = (phi, theta).
+
+        method     "euler-moving" (default) | "euler-fixed" | "euler-body" | "lagrange"
+        sequence   "phi-theta" (default) | "theta-phi": the order of the small rotations
+        order      1 | 2: order of smallness kept in the kinematics
+
+    Returns a Derivation: .M, .G, .K (2x2 tuples of strings), .characteristic_polynomial,
+    .stability_condition; every entry a string in A, B, C, m, g, R, omega0 (and lambda), `^`
+    for powers (sympy reads them after ^ -> **). As a Mapping and by .to_dict() it is
+    json.loads of `heavytop derive --method M --sequence S --order N --format json`. Bad input
+    raises InvalidInput (a ValueError): "order: must be 1 or 2"; built without GiNaC
+    (HAS_DERIVE false), RuntimeError.
+    """
+    return Derivation.from_json(_core.derive(method, sequence, order))
+
+
+def derive_rotations(order: Literal[1, 2] = 1) -> Rotations:
+    """The paper's small-rotation matrices to `order` (1 or 2): .A1, .A2, .A3, .A1A2, .A2A1,
+    .commutator (= A1A2 - A2A1), 3x3 tuples of strings in phi, theta, psi (rows i, j, k in terms
+    of l, m, n); as a Mapping, json.loads of `heavytop derive --rotations --format json`.
+    """
+    return Rotations.from_json(_core.derive_rotations(order))
+
+
+def derive_check(order: Optional[Literal[1, 2]] = None) -> DerivationCheck:
+    """Every route and rotation sequence at `order` (1, 2, or None for both): .rows (each with
+    .method, .sequence, .order, .M, .G, .K, .model, .expected, .as_expected, .why) and
+    .all_as_expected; as a Mapping, json.loads of `heavytop derive --check --format json`.
+    """
+    return DerivationCheck.from_json(_core.derive_check(order))

@@ -1,0 +1,102 @@
+"""heavytop._core: the compiled bindings of the heavytop package (pybind11, NumPy).
+
+Use the package instead (`import heavytop`): its functions give these their defaults and
+wrap what they return in typed results (heavytop.results).
+"""
+from typing import Any, Dict, Literal, Optional, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+#: The SPEC names of every model, in SPEC order.
+MODELS: Tuple[str, ...]
+#: False when built without HEAVYTOP_BUILD_SYMBOLIC (GiNaC): derive*() raise RuntimeError.
+HAS_DERIVE: bool
+
+class InvalidInput(ValueError):
+    """Bad input: "<key>: <rule>", the key a keyword argument's name or "body.*", "motion.*"."""
+
+    key: str
+    rule: str
+
+class Body:
+    """A rigid body turning about a fixed point O in uniform gravity (SPEC section 1). Immutable."""
+
+    def __init__(self, A: float, B: float, C: float, mass: float, length: float, gravity: float = 9.81) -> None: ...
+    @property
+    def A(self) -> float: ...
+    @property
+    def B(self) -> float: ...
+    @property
+    def C(self) -> float: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def length(self) -> float: ...
+    @property
+    def gravity(self) -> float: ...
+    @property
+    def mgR(self) -> float: ...
+    def to_dict(self) -> Dict[str, float]: ...
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
+    def __getstate__(self) -> Tuple[float, float, float, float, float, float]: ...
+    def __setstate__(self, state: Tuple[float, float, float, float, float, float]) -> None: ...
+
+
+def example_toy_top() -> Body: ...
+def example_motion() -> Dict[str, float]: ...
+def grid_values(start: float, stop: float, count: int) -> npt.NDArray[np.float64]: ...
+
+def stability(body: Body, spin: float) -> Dict[str, Any]: ...
+def simulate(
+    body: Body,
+    model: str,
+    *,
+    spin: float,
+    theta0: float,
+    phi0: float,
+    theta_rate0: float,
+    phi_rate0: float,
+    t_end: float,
+    samples: int,
+    method: Optional[Literal["analytic", "numeric"]] = None,
+    integrator: Optional[Literal["adaptive", "splitting"]] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    step: Optional[float] = None,
+    order: Optional[int] = None,
+    max_steps: Optional[int] = None,
+) -> Tuple[Dict[str, npt.NDArray[np.float64]], Dict[str, Any]]: ...
+def compare(
+    body: Body,
+    *,
+    spin: float,
+    theta0: float,
+    phi0: float,
+    theta_rate0: float,
+    phi_rate0: float,
+    t_end: float,
+    samples: int,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+) -> Dict[str, Any]: ...
+def sweep(
+    body: Body,
+    vary: Dict[str, npt.ArrayLike],
+    *,
+    spin: float,
+    theta0: float,
+    phi0: float,
+    theta_rate0: float,
+    phi_rate0: float,
+    nonlinear: bool,
+    horizon: float,
+    max_tilt: float,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+) -> Dict[str, npt.NDArray[Any]]: ...
+def derive(method: str, sequence: str, order: int) -> Dict[str, Any]: ...
+def derive_rotations(order: int) -> Dict[str, Any]: ...
+def derive_check(order: Optional[int] = None) -> Dict[str, Any]: ...

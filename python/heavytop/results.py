@@ -1,0 +1,440 @@
+"""Typed results of heavytop's functions.
+
+Every result has attributes (typed, SI units) and reads like what the command line prints:
+
+* stability(), compare() and derive*() results are Mappings over json.loads of the command's
+  JSON (`heavytop stability|compare|derive --format json`): ``result["models"]`` is the JSON
+  object (plain dicts and lists), ``result.to_dict()`` the whole of it, and the attributes
+  the same values typed (``result.models["linearized"].critical_spin``).
+* simulate() and sweep() results are Mappings over the CSV's columns as NumPy arrays
+  (``result["theta"]``, ``result.theta``); ``to_dict()`` gives the dict of arrays.
+"""
+from __future__ import annotations
+
+import copy
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterator, Optional, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+from ._core import Body
+
+__all__ = [
+    "JsonResult", "ModelStability", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
+    "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
+    "StabilityMap",
+]
+
+FloatArray = npt.NDArray[np.float64]
+BoolArray = npt.NDArray[np.bool_]
+#: A matrix of expressions (strings), row by row.
+Matrix = Tuple[Tuple[str, ...], ...]
+
+
+class JsonResult(Mapping):  # Mapping[str, Any]
+    """A result that reads like the command line's JSON object: ``result[key]`` and
+    ``to_dict()`` give json.loads of the command's output (copies: changing them changes
+    nothing here); the attributes give the same values typed."""
+
+    _data: Dict[str, Any]
+
+    def __getitem__(self, key: str) -> Any:
+        return copy.deepcopy(self._data[key])
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._data)
+
+    def __len__(self) -> int:
+        return len(self._data)
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._data
+
+    def to_dict(self) -> Dict[str, Any]:
+        """json.loads of the command line's JSON for the same input."""
+        return copy.deepcopy(self._data)
+
+    def _repr_pretty_(self, printer: Any, cycle: bool) -> None:  # IPython
+        printer.text(repr(self))
+
+
+def _matrix(rows: Any) -> Matrix:
+    return tuple(tuple(row) for row in rows)
+
+
+# ---- stability -------------------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class ModelStability(JsonResult):
+    """One linear model's stability at the spin asked (SPEC section 3)."""
+
+    stable: bool
+    """Every eigenvalue has zero real part and every multiple one is semisimple."""
+    critical_spin: Optional[float]
+    """rad/s, the lo of the unbounded stable interval; 0 when stable at every spin, None when
+    no spin stabilises the model."""
+    stable_spin_intervals: Tuple[Tuple[float, Optional[float]], ...]
+    """rad/s, the spins w0 >= 0 where the model is stable, as (lo, hi) pairs; hi None: and above."""
+    eigenvalues: Tuple[complex, ...]
+    """1/s, the four eigenvalues (the linearized model's are those of its body-frame system)."""
+    frequencies: Tuple[float, ...]
+    """rad/s, the distinct |Im| of the eigenvalues, ascending; empty unless stable."""
+    reason: str
+    """Why, in a few words for a person."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "ModelStability":
+        return cls(stable=data["stable"], critical_spin=data["critical_spin"],
+                   stable_spin_intervals=tuple((lo, hi) for lo, hi in data["stable_spin_intervals"]),
+                   eigenvalues=tuple(complex(re, im) for re, im in data["eigenvalues"]),
+                   frequencies=tuple(data.get("frequencies", ())), reason=data.get("reason", ""), _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Stability(JsonResult):
+    """Linear stability of the first-order, body-fixed and linearized models at one spin:
+    `heavytop stability --format json` (``to_dict()`` is json.loads of it)."""
+
+    body: Body
+    """The body analysed."""
+    spin: float
+    """rad/s, the spin w0 analysed."""
+    models: Dict[str, ModelStability]
+    """By SPEC name: "first-order", "body-fixed", "linearized"."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Stability":
+        b = data["body"]
+        body = Body(b["A"], b["B"], b["C"], mass=b["mass"], length=b["length"], gravity=b["gravity"])
+        return cls(body=body, spin=data["spin"],
+                   models={name: ModelStability.from_json(m) for name, m in data["models"].items()}, _data=data)
+
+
+# ---- compare ---------------------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class NonlinearReference(JsonResult):
+    """The nonlinear body (the truth) of a comparison: its measured frequencies and work."""
+
+    nutation_frequency: Optional[float]
+    """rad/s, 2 pi / mean time between tilt maxima (None if the tilt is constant)."""
+    precession_rate: Optional[float]
+    """rad/s, mean rate of the axis's azimuth over whole nutation periods."""
+    steps: int
+    """Accepted steps of the integrator."""
+    max_relative_energy_drift: float
+    """max |E(t) - E(0)| / E_scale over every accepted step."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "NonlinearReference":
+        return cls(nutation_frequency=data["nutation_frequency"], precession_rate=data["precession_rate"],
+                   steps=data["steps"], max_relative_energy_drift=data["max_relative_energy_drift"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class ModelComparison(JsonResult):
+    """One approximate model against the nonlinear body."""
+
+    max_angle_error: float
+    """rad, max over the samples of the larger of |d theta| and |d phi|."""
+    final_angle_error: float
+    """rad, the same at the last sample."""
+    nutation_frequency: Optional[float]
+    """rad/s, measured from the model's own trajectory."""
+    precession_rate: Optional[float]
+    """rad/s, measured from the model's own trajectory."""
+    nutation_relative_error: Optional[float]
+    """|nutation - truth| / truth."""
+    precession_relative_error: Optional[float]
+    """|precession - truth| / |truth|."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "ModelComparison":
+        return cls(max_angle_error=data["max_angle_error"], final_angle_error=data["final_angle_error"],
+                   nutation_frequency=data["nutation_frequency"], precession_rate=data["precession_rate"],
+                   nutation_relative_error=data["nutation_relative_error"],
+                   precession_relative_error=data["precession_relative_error"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Comparison(JsonResult):
+    """Every approximate model against the nonlinear body: `heavytop compare --format json`."""
+
+    nonlinear: NonlinearReference
+    """The truth."""
+    models: Dict[str, ModelComparison]
+    """By SPEC name: first-order, body-fixed, linearized, and lagrange-exact when A = B."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Comparison":
+        return cls(nonlinear=NonlinearReference.from_json(data["nonlinear"]),
+                   models={name: ModelComparison.from_json(m) for name, m in data["models"].items()}, _data=data)
+
+
+# ---- derive ----------------------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class Derivation(JsonResult):
+    """M q'' + G q' + K q = 0, q = (phi, theta), derived symbolically: `heavytop derive
+    --format json`. Every entry a string in A, B, C, m, g, R, omega0 (and lambda), `^` for
+    powers."""
+
+    M: Matrix
+    G: Matrix
+    K: Matrix
+    characteristic_polynomial: str
+    """In lambda."""
+    stability_condition: str
+    """Relations joined by `&`, or True / False."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Derivation":
+        return cls(M=_matrix(data["M"]), G=_matrix(data["G"]), K=_matrix(data["K"]),
+                   characteristic_polynomial=data["characteristic_polynomial"],
+                   stability_condition=data["stability_condition"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Rotations(JsonResult):
+    """The paper's small-rotation matrices, 3x3 strings in phi, theta, psi: `heavytop derive
+    --rotations --format json`."""
+
+    A1: Matrix
+    A2: Matrix
+    A3: Matrix
+    A1A2: Matrix
+    A2A1: Matrix
+    commutator: Matrix
+    """A1A2 - A2A1."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Rotations":
+        names = ("A1", "A2", "A3", "A1A2", "A2A1", "commutator")
+        return cls(**{n: _matrix(data[n]) for n in names}, _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class CheckRow(JsonResult):
+    """One route and rotation sequence of the derivation check."""
+
+    method: str
+    sequence: str
+    order: int
+    M: Matrix
+    G: Matrix
+    K: Matrix
+    model: Optional[str]
+    """The paper's model it gives, or None."""
+    expected: Optional[str]
+    """The model the paper says it gives, or None."""
+    as_expected: bool
+    why: str
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "CheckRow":
+        return cls(method=data["method"], sequence=data["sequence"], order=data["order"], M=_matrix(data["M"]),
+                   G=_matrix(data["G"]), K=_matrix(data["K"]), model=data["model"], expected=data["expected"],
+                   as_expected=data["as_expected"], why=data["why"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class DerivationCheck(JsonResult):
+    """Every route and rotation sequence: `heavytop derive --check --format json`."""
+
+    rows: Tuple[CheckRow, ...]
+    all_as_expected: bool
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "DerivationCheck":
+        return cls(rows=tuple(CheckRow.from_json(r) for r in data["rows"]), all_as_expected=data["all_as_expected"],
+                   _data=data)
+
+
+# ---- simulate --------------------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class SimulationSummary(JsonResult):
+    """What simulate() did: the solver, its work, and the drift of the first integrals."""
+
+    model: str
+    """SPEC name of the model."""
+    solver: str
+    """E.g. "closed form", "Dormand-Prince 5(4)", "splitting, order 4, step 0.001 s"."""
+    termination: str
+    """"success" (every sample computed) or "failure" (simulate() then raises RuntimeError)."""
+    message: str
+    """One line: why it failed, or empty."""
+    samples: int
+    """Samples computed."""
+    steps: int
+    """Integrator steps (0 for closed forms)."""
+    rejected_steps: int
+    """Steps rejected by the error control."""
+    rhs_evaluations: int
+    """Evaluations of the equations of motion (kicks for the splitting)."""
+    max_relative_energy_drift: Optional[float]
+    """Relative drift of the energy over the run; None for models that do not monitor it."""
+    max_relative_vertical_momentum_drift: Optional[float]
+    """Relative drift of L_zeta over the run; None for models that do not monitor it."""
+    max_relative_axial_momentum_drift: Optional[float]
+    """Relative drift of C w3 over the run (conserved only when A == B); None if not monitored."""
+    report: str
+    """One line for people."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @property
+    def ok(self) -> bool:
+        """True if every sample was computed."""
+        return self.termination == "success"
+
+    def __str__(self) -> str:
+        return self.report
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "SimulationSummary":
+        return cls(**data, _data=data)
+
+
+def _column(name: str, doc: str) -> property:
+    def get(self: "Trajectory") -> FloatArray:
+        try:
+            return self._columns[name]
+        except KeyError:
+            raise AttributeError(f"a {self.model} trajectory has no column {name!r} "
+                                 f"(its columns: {', '.join(self.columns)})") from None
+    return property(get, doc=doc)
+
+
+class Trajectory(Mapping):  # Mapping[str, FloatArray]
+    """The motion of one model, column by column as `heavytop simulate --format csv` prints it:
+    float64 NumPy arrays, one element per sample. ``result["theta"]`` and ``result.theta``
+    are the same array; ``to_dict()`` is the dict of every column, in the CSV's order."""
+
+    __slots__ = ("_columns", "_model", "_summary")
+
+    def __init__(self, columns: Dict[str, FloatArray], summary: SimulationSummary) -> None:
+        self._columns = dict(columns)
+        self._summary = summary
+        self._model = summary.model
+
+    t = _column("t", "s, the sample times")
+    theta = _column("theta", "rad, theta = atan2(k_xi, k_zeta): the spin axis's tilt towards xi")
+    phi = _column("phi", "rad, phi = -asin(k_eta): the spin axis's tilt about xi")
+    theta_rate = _column("theta_rate", "rad/s, theta'")
+    phi_rate = _column("phi_rate", "rad/s, phi'")
+    energy = _column("energy", "J, E (nonlinear only)")
+    vertical_momentum = _column("vertical_momentum", "kg m^2/s, L_zeta (nonlinear only)")
+    axial_momentum = _column("axial_momentum", "kg m^2/s, C w3, conserved only when A == B (nonlinear only)")
+    energy_drift = _column("energy_drift", "J, E(t) - E(0) (nonlinear only)")
+    vertical_momentum_drift = _column("vertical_momentum_drift", "kg m^2/s, L_zeta(t) - L_zeta(0) (nonlinear only)")
+    axial_momentum_drift = _column("axial_momentum_drift", "kg m^2/s, C w3(t) - C w3(0) (nonlinear only)")
+
+    @property
+    def model(self) -> str:
+        """SPEC name of the model simulated."""
+        return self._model
+
+    @property
+    def summary(self) -> SimulationSummary:
+        """What the solver did."""
+        return self._summary
+
+    @property
+    def columns(self) -> Tuple[str, ...]:
+        """The column names in the CSV's order: t, theta, phi, theta_rate, phi_rate, then the
+        model's extra columns."""
+        return tuple(self._columns)
+
+    @property
+    def extra(self) -> Dict[str, FloatArray]:
+        """The columns after the first five (the nonlinear model's conserved quantities)."""
+        return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= 5}
+
+    def __getitem__(self, name: str) -> FloatArray:
+        return self._columns[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._columns
+
+    def to_dict(self) -> Dict[str, FloatArray]:
+        """Every column by name, in the CSV's order (the arrays themselves, not copies)."""
+        return dict(self._columns)
+
+    def __repr__(self) -> str:
+        return (f"Trajectory(model={self._model!r}, samples={len(self._columns['t'])}, "
+                f"columns={self.columns!r}, summary={self._summary.report!r})")
+
+
+# ---- sweep -----------------------------------------------------------------------------------
+
+class StabilityMap(Mapping):  # Mapping[str, FloatArray | BoolArray]
+    """Each model's verdict over a grid, column by column as `heavytop sweep` prints it: the
+    varied values (float64), then a bool column per model, one element per grid point
+    (row-major, the first key slowest). ``to_dict()`` is the dict of every column."""
+
+    __slots__ = ("_columns", "_shape")
+
+    def __init__(self, columns: Dict[str, Any], shape: Tuple[int, ...]) -> None:
+        self._columns = dict(columns)
+        self._shape = tuple(shape)
+
+    @property
+    def columns(self) -> Tuple[str, ...]:
+        """The column names in the CSV's order."""
+        return tuple(self._columns)
+
+    @property
+    def shape(self) -> Tuple[int, ...]:
+        """The grid's shape: the number of values of each varied key, in order."""
+        return self._shape
+
+    @property
+    def parameters(self) -> Dict[str, FloatArray]:
+        """The varied keys' values at every grid point (SI units), in order."""
+        return {name: column for i, (name, column) in enumerate(self._columns.items()) if i < len(self._shape)}
+
+    @property
+    def verdicts(self) -> Dict[str, BoolArray]:
+        """Stable? at every grid point, by model: first-order, body-fixed, linearized and,
+        when asked, nonlinear."""
+        return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= len(self._shape)}
+
+    def grid(self, name: str) -> npt.NDArray[Any]:
+        """Column `name` as an array of the grid's shape (a view)."""
+        return self._columns[name].reshape(self._shape)
+
+    def __getitem__(self, name: str) -> npt.NDArray[Any]:
+        return self._columns[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._columns
+
+    def to_dict(self) -> Dict[str, npt.NDArray[Any]]:
+        """Every column by name, in the CSV's order (the arrays themselves, not copies)."""
+        return dict(self._columns)
+
+    def __repr__(self) -> str:
+        return f"StabilityMap(shape={self._shape!r}, columns={self.columns!r})"

@@ -1,0 +1,48 @@
+// stability and compare: json.loads of the very JSON the command line prints (heavytop_io).
+#include <optional>
+
+#include <pybind11/stl.h>
+
+#include "common.hpp"
+#include "docs.hpp"
+#include "heavytop/compare.hpp"
+#include "heavytop/io/formats.hpp"
+#include "heavytop/stability.hpp"
+#include "interrupt.hpp"
+
+namespace heavytop::python {
+
+using namespace pybind11::literals;
+
+namespace {
+
+py::object stability(const Body& body, double spin) {
+  validate(body);
+  motion(spin, 0, 0, 0, 0);
+  return from_json(without_gil([&] { return io::stability_json(body, spin, analyse_stability(body, spin)); }));
+}
+
+py::object compare(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
+                   double phi_rate0, double t_end, long long samples, std::optional<double> rtol,
+                   std::optional<double> atol) {
+  validate(body);
+  const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
+  require_positive("t_end", t_end);
+  require_count("samples", samples, 3, 100'000'000);
+  NonlinearOptions options = tolerances(rtol, atol);
+  options.progress = poll_signals();
+  return from_json(without_gil([&] {
+    return io::comparison_json(
+        compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options));
+  }));
+}
+
+}  // namespace
+
+void bind_analyses(py::module_& m) {
+  m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a);
+  m.def("compare", &compare, docs::kCoreCompare, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
+        "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "samples"_a, "rtol"_a = py::none(), "atol"_a = py::none());
+}
+
+}  // namespace heavytop::python

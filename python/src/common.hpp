@@ -1,0 +1,45 @@
+// Shared by the binding files of heavytop._core: conversions between the core's types and
+// Python's, and the functions that bind each topic (one file per topic).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop::python {
+
+namespace py = pybind11;
+
+/// JSON text, exactly as the command line prints it (heavytop_io, heavytop_symbolic), as
+/// Python dicts and lists (json.loads keeps the order of the keys).
+py::object from_json(const std::string& text);
+
+/// A column as a float64 NumPy array that takes the vector over (no copy).
+py::array_t<double> to_numpy(std::vector<double>&& column);
+
+/// The user's initial state, validated as the command line validates it (keys "motion.*").
+InitialState motion(double spin, double theta0, double phi0, double theta_rate0, double phi_rate0);
+
+/// The nonlinear integrator's tolerances; None keeps the core's default (keys "rtol", "atol").
+NonlinearOptions tolerances(std::optional<double> rtol, std::optional<double> atol);
+
+/// `value` must be finite and > 0 (key `key`: a keyword argument's name).
+void require_positive(const char* key, double value);
+/// `value` must be in [lo, hi] (key `key`: a keyword argument's name).
+void require_count(const char* key, long long value, long long lo, long long hi);
+
+// One per topic: each adds its classes and functions to the module.
+void bind_errors(py::module_& m);
+void bind_body(py::module_& m);
+void bind_simulate(py::module_& m);
+void bind_analyses(py::module_& m);
+void bind_sweep(py::module_& m);
+void bind_derive(py::module_& m);
+
+}  // namespace heavytop::python

@@ -1,0 +1,165 @@
+// sweep and grid_values: the command line's stability maps, on every core, the GIL released.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
+
+#include "common.hpp"
+#include "docs.hpp"
+#include "heavytop/linear_models.hpp"
+#include "heavytop/sweep.hpp"
+#include "interrupt.hpp"
+
+namespace heavytop::python {
+
+using namespace pybind11::literals;
+
+namespace {
+
+using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+struct VariedKey {
+  std::string key;
+  Values values;
+  const double* data() const { return values.data(); }
+  std::size_t size() const { return static_cast<std::size_t>(values.size()); }
+};
+
+/// True if `v` are exactly the command line's KEY=v[0]:v[n-1]:n values (SweepAxis::value).
+bool is_cli_grid(const VariedKey& v, SweepAxis& axis) {
+  axis = SweepAxis{v.key, v.data()[0], v.data()[v.size() - 1], v.size()};
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!(axis.value(i) == v.data()[i])) return false;
+  return true;
+}
+
+/// The one-point axes that put grid point `index` (first key slowest) at its exact values.
+std::vector<SweepAxis> point_axes(const std::vector<VariedKey>& keys, std::size_t index) {
+  std::vector<SweepAxis> axes(keys.size());
+  for (std::size_t k = keys.size(); k-- > 0;) {
+    const double v = keys[k].data()[index % keys[k].size()];
+    index /= keys[k].size();
+    axes[k] = SweepAxis{keys[k].key, v, v, 1};
+  }
+  return axes;
+}
+
+/// The varied keys and their values, checked as the command line checks --vary (key "vary").
+std::vector<VariedKey> varied_keys(const py::dict& vary) {
+  if (vary.size() < 1 || vary.size() > 2) throw InvalidInput("vary", "give one or two parameters");
+  std::vector<VariedKey> keys;
+  for (const auto& [k, v] : vary) {
+    if (!py::isinstance<py::str>(k))
+      throw InvalidInput("vary", "the keys must be strings (A, B, C, mass, gravity, length, spin, B/A, C/A)");
+    const std::string key = k.cast<std::string>();
+    if (key.find_first_of("=:") != std::string::npos) throw InvalidInput("vary", fmt::format("unknown key '{}'", key));
+    parse_sweep_axis(key + "=0:0:1");  // the command line's check of the key
+    Values values;
+    try {
+      values = Values::ensure(v);
+    } catch (const py::error_already_set&) {
+    }
+    if (!values || values.ndim() != 1 || values.size() < 1 || values.size() > 100'000'000)
+      throw InvalidInput("vary", fmt::format("the values of '{}' must be a 1-D array of 1 to 100000000 numbers", key));
+    keys.push_back({key, std::move(values)});
+  }
+  return keys;
+}
+
+py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta0, double phi0,
+               double theta_rate0, double phi_rate0, bool nonlinear, double horizon, double max_tilt,
+               std::optional<double> rtol, std::optional<double> atol) {
+  validate(body);
+  const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
+  const std::vector<VariedKey> keys = varied_keys(vary);
+  SweepOptions options;
+  options.nonlinear = nonlinear;
+  options.horizon = horizon;
+  options.max_tilt = max_tilt;
+  options.integrator = tolerances(rtol, atol);
+
+  // When every array is the command line's START:STOP:COUNT grid (bit for bit), its very calls.
+  std::vector<SweepAxis> axes(keys.size());
+  bool cli_grid = true;
+  for (std::size_t k = 0; k < keys.size(); ++k) cli_grid = is_cli_grid(keys[k], axes[k]) && cli_grid;
+  std::size_t total = 1;
+  for (const auto& k : keys) total *= k.size();
+  if (total > 100'000'000) throw InvalidInput("vary", "the grid must have at most 100000000 points");
+  // Every point is checked before anything is computed, as the command line does.
+  without_gil([&] {
+    if (cli_grid) {
+      validate_sweep(body, state, axes, options);
+    } else {
+      validate_sweep(body, state, {}, options);
+      for (std::size_t i = 0; i < total; ++i) validate_sweep(body, state, point_axes(keys, i), options);
+    }
+  });
+
+  py::dict out;
+  std::vector<double*> value_columns;
+  for (const auto& k : keys) {
+    py::array_t<double> column(static_cast<py::ssize_t>(total));
+    value_columns.push_back(column.mutable_data());
+    out[py::str(k.key)] = column;
+  }
+  const std::size_t model_count = kLinearModels.size() + (nonlinear ? 1 : 0);
+  std::vector<bool*> verdict_columns;
+  for (std::size_t m = 0; m < model_count; ++m) {
+    py::array_t<bool> column(static_cast<py::ssize_t>(total));
+    verdict_columns.push_back(column.mutable_data());
+    out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m])) : "nonlinear")] = column;
+  }
+
+  without_gil([&] {
+    std::vector<SweepVerdict> verdicts(total);
+    SweepOptions one_thread = options;
+    one_thread.threads = 1;  // the blocks are spread over the threads here
+    if (cli_grid) {
+      // The command line's own grid: the calls it makes, block by block.
+      parallel_blocks(total, 16, [&](std::size_t begin, std::size_t end) {
+        std::ranges::copy(sweep_verdicts(body, state, axes, one_thread, begin, end), verdicts.begin() + begin);
+      });
+    } else {
+      // Any values: each point is a grid of one point at its exact values, judged by the same call.
+      parallel_blocks(total, 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+          verdicts[i] = sweep_verdicts(body, state, point_axes(keys, i), one_thread, 0, 1)[0];
+      });
+    }
+    for (std::size_t i = 0; i < total; ++i) {
+      for (std::size_t k = 0, index = i; k < keys.size(); ++k) {
+        std::size_t stride = 1;
+        for (std::size_t j = k + 1; j < keys.size(); ++j) stride *= keys[j].size();
+        value_columns[k][i] = keys[k].data()[index / stride % keys[k].size()];
+      }
+      for (std::size_t m = 0; m < kLinearModels.size(); ++m) verdict_columns[m][i] = verdicts[i].linear[m];
+      if (nonlinear) verdict_columns.back()[i] = verdicts[i].nonlinear.value_or(false);
+    }
+  });
+  return out;
+}
+
+py::array_t<double> grid_values(double start, double stop, long long count) {
+  if (!std::isfinite(start)) throw InvalidInput("start", "must be a finite number");
+  if (!std::isfinite(stop)) throw InvalidInput("stop", "must be a finite number");
+  require_count("count", count, 1, 100'000'000);
+  const SweepAxis axis{"", start, stop, static_cast<std::size_t>(count)};
+  std::vector<double> values(axis.count);
+  for (std::size_t i = 0; i < axis.count; ++i) values[i] = axis.value(i);
+  return to_numpy(std::move(values));
+}
+
+}  // namespace
+
+void bind_sweep(py::module_& m) {
+  m.def("sweep", &sweep, docs::kCoreSweep, "body"_a, "vary"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
+        "theta_rate0"_a, "phi_rate0"_a, "nonlinear"_a, "horizon"_a, "max_tilt"_a, "rtol"_a = py::none(),
+        "atol"_a = py::none());
+  m.def("grid_values", &grid_values, docs::kGridValues, "start"_a, "stop"_a, "count"_a);
+}
+
+}  // namespace heavytop::python

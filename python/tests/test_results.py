@@ -1,0 +1,176 @@
+"""Typed results: attributes, and a Mapping / to_dict() that is what the command line prints."""
+import io
+import math
+import pickle
+
+import numpy as np
+import pytest
+
+import heavytop
+from conftest import BODIES, body_options, cli_json, motion_options, needs_derive, run_cli
+from test_errors import cli_error
+
+TOP = heavytop.example_toy_top()
+MOTION = heavytop.example_motion()
+
+
+def test_stability_attributes_are_the_json_typed():
+    body = BODIES["asymmetric-plate"]
+    result = heavytop.stability(body, 1.3)
+    expected = cli_json("stability", *body_options(body), *motion_options(spin=1.3))
+    assert isinstance(result, heavytop.Stability)
+    assert result.to_dict() == expected and result == expected
+    assert list(result) == list(expected) and len(result) == len(expected) and "models" in result
+    assert result.body == body and result.spin == 1.3
+    assert list(result.models) == ["first-order", "body-fixed", "linearized"]
+    for name, model in result.models.items():
+        json = expected["models"][name]
+        assert isinstance(model, heavytop.ModelStability)
+        assert model.stable is json["stable"] and model.critical_spin == json["critical_spin"]
+        assert model.stable_spin_intervals == tuple(tuple(i) for i in json["stable_spin_intervals"])
+        assert model.eigenvalues == tuple(complex(re, im) for re, im in json["eigenvalues"])
+        assert model.frequencies == tuple(json.get("frequencies", ()))
+        assert model.reason == json["reason"]
+        assert model.to_dict() == json and model == json
+    # Indexing gives copies of the JSON: changing them changes nothing.
+    result["models"]["linearized"]["stable"] = "changed"
+    assert result.to_dict() == expected
+    assert pickle.loads(pickle.dumps(result)) == expected
+
+
+def test_closed_form_critical_spin_of_the_symmetric_top():
+    # C^2 w0^2 > 4 A m g R: the sleeping-top criterion.
+    critical = heavytop.stability(TOP, 200.0).models["linearized"].critical_spin
+    assert critical == pytest.approx(math.sqrt(4 * TOP.A * TOP.mgR) / TOP.C, rel=1e-12)
+
+
+def test_compare_attributes_are_the_json_typed():
+    result = heavytop.compare(TOP, **MOTION, t_end=0.5, samples=501)
+    expected = cli_json("compare", *body_options(TOP), *motion_options(**MOTION), "--t-end", "0.5", "--samples", "501")
+    assert isinstance(result, heavytop.Comparison) and result.to_dict() == expected
+    assert result.nonlinear.steps == expected["nonlinear"]["steps"]
+    assert result.nonlinear.precession_rate == expected["nonlinear"]["precession_rate"]
+    assert list(result.models) == list(expected["models"]) == ["first-order", "body-fixed", "linearized",
+                                                               "lagrange-exact"]
+    for name, model in result.models.items():
+        for key, value in expected["models"][name].items():
+            assert getattr(model, key) == value, (name, key)
+    assert result.models["lagrange-exact"].max_angle_error < 1e-8
+
+
+def test_trajectory_attributes_are_its_columns():
+    result = heavytop.simulate(TOP, "nonlinear", **MOTION, t_end=0.5, samples=101)
+    assert isinstance(result, heavytop.Trajectory)
+    assert result.columns == tuple(result) == tuple(result.to_dict())
+    for name in result.columns:
+        assert getattr(result, name) is result[name] is result.to_dict()[name]
+    assert list(result.extra) == list(result.columns[5:]) == ["energy", "vertical_momentum", "axial_momentum",
+                                                               "energy_drift", "vertical_momentum_drift",
+                                                               "axial_momentum_drift"]
+    assert result.model == "nonlinear" and len(result) == 11 and "energy" in result
+    summary = result.summary
+    assert isinstance(summary, heavytop.SimulationSummary)
+    assert summary.ok and summary.termination == "success" and summary.message == ""
+    assert summary.model == "nonlinear" and summary.solver == "Dormand-Prince 5(4)" and summary.samples == 101
+    assert summary.steps > 0 and summary.rhs_evaluations > summary.steps
+    assert 0 <= summary.max_relative_energy_drift < 1e-12
+    assert str(summary) == summary.report and summary.report.startswith("nonlinear (Dormand-Prince 5(4)): 101 samples")
+
+    linear = heavytop.simulate(TOP, "first-order", **MOTION, t_end=0.5, samples=101)
+    assert linear.columns == ("t", "theta", "phi", "theta_rate", "phi_rate") and linear.extra == {}
+    assert linear.summary.solver == "closed form" and linear.summary.max_relative_energy_drift is None
+    with pytest.raises(AttributeError, match="first-order trajectory has no column 'energy'"):
+        linear.energy
+
+
+def test_splitting_integrator_equals_the_cli():
+    options = dict(integrator="splitting", step=2e-3, order=4)
+    result = heavytop.simulate(TOP, **MOTION, t_end=1.0, samples=11, **options)
+    csv = run_cli("simulate", *body_options(TOP), *motion_options(**MOTION), "--integrator", "splitting",
+                  "--step", "0.002", "--order", "4", "--t-end", "1", "--samples", "11", "--format", "csv").stdout
+    header = csv.splitlines()[0].split(",")
+    data = np.loadtxt(io.StringIO(csv), delimiter=",", skiprows=1, ndmin=2)
+    assert list(result.columns) == header
+    for i, name in enumerate(header):
+        np.testing.assert_array_equal(result[name] + 0.0, data[:, i], err_msg=name)
+    assert result.summary.solver == "splitting, order 4, step 0.002 s" and result.summary.steps == 500
+    adaptive = heavytop.simulate(TOP, **MOTION, t_end=1.0, samples=11)
+    np.testing.assert_allclose(result.theta, adaptive.theta, rtol=0, atol=1e-6)
+
+
+def test_a_failed_run_raises_runtime_error_with_the_summarys_message():
+    with pytest.raises(RuntimeError, match="max_steps") as error:
+        heavytop.simulate(TOP, **MOTION, t_end=10.0, samples=11, max_steps=10)
+    summary = error.value.summary
+    assert not summary.ok and summary.termination == "failure"
+    assert str(error.value) == summary.message and summary.message in summary.report
+    # The same cap on the splitting integrator: the core refuses the step as too small instead.
+    with pytest.raises(ValueError, match="^step: too small"):
+        heavytop.simulate(TOP, **MOTION, t_end=10.0, samples=11, integrator="splitting", max_steps=10)
+
+
+@pytest.mark.parametrize("kwargs,cli_args", [
+    (dict(integrator="splitting", order=3), ["--integrator", "splitting", "--order", "3"]),
+    (dict(integrator="splitting", step=0.0), ["--integrator", "splitting", "--step", "0"]),
+    (dict(integrator="splitting", step=math.inf), ["--integrator", "splitting", "--step", "inf"]),
+])
+def test_integrator_options_are_refused_as_the_cli(kwargs, cli_args):
+    with pytest.raises(heavytop.InvalidInput) as error:
+        heavytop.simulate(TOP, **kwargs)
+    assert str(error.value) == cli_error("simulate", *body_options(TOP), *cli_args)
+
+
+@pytest.mark.parametrize("kwargs,message", [
+    (dict(integrator="leapfrog"), "integrator: must be adaptive or splitting"),
+    (dict(model="first-order", integrator="adaptive"), 'integrator: applies to model="nonlinear" only'),
+    (dict(model="linearized", step=1e-3), 'step: applies to model="nonlinear" only'),
+    (dict(model="lagrange-exact", max_steps=10), 'max_steps: applies to model="nonlinear" only'),
+    (dict(step=1e-3), 'step: applies to integrator="splitting" only'),
+    (dict(integrator="adaptive", order=4), 'order: applies to integrator="splitting" only'),
+    (dict(max_steps=0), "max_steps: must be > 0"),
+    (dict(max_steps=-5), "max_steps: must be > 0"),
+    (dict(integrator="splitting", max_steps=0), "max_steps: must be > 0"),
+])
+def test_integrator_options_name_the_keyword(kwargs, message):
+    with pytest.raises(heavytop.InvalidInput) as error:
+        heavytop.simulate(TOP, **kwargs)
+    assert str(error.value) == message and error.value.key == message.split(":")[0]
+
+
+def test_sweep_result_is_a_stability_map():
+    ratios, spins = heavytop.grid_values(0.9, 1.1, 3), heavytop.grid_values(100, 300, 5)
+    result = heavytop.sweep(TOP, {"B/A": ratios, "spin": spins}, spin=200.0)
+    assert isinstance(result, heavytop.StabilityMap)
+    assert result.columns == ("B/A", "spin", "first-order", "body-fixed", "linearized") == tuple(result)
+    assert result.shape == (3, 5) and list(result.parameters) == ["B/A", "spin"]
+    assert list(result.verdicts) == ["first-order", "body-fixed", "linearized"]
+    assert result.to_dict().keys() == dict(result).keys()
+    grid = result.grid("linearized")
+    assert grid.shape == (3, 5) and (result.grid("spin")[1] == spins).all() and (result.grid("B/A")[:, 0] == ratios).all()
+    for i, ratio in enumerate(ratios):
+        for j, spin in enumerate(spins):
+            body = heavytop.Body(**dict(TOP.to_dict(), B=ratio * TOP.A))
+            assert grid[i, j] == heavytop.stability(body, spin).models["linearized"].stable
+
+
+def test_grid_values_name_their_arguments():
+    for args, message in [((math.nan, 1.0, 3), "start: must be a finite number"),
+                          ((0.0, math.inf, 3), "stop: must be a finite number"),
+                          ((0.0, 1.0, 0), "count: must be an integer in [1, 100000000]")]:
+        with pytest.raises(heavytop.InvalidInput) as error:
+            heavytop.grid_values(*args)
+        assert str(error.value) == message
+
+
+@needs_derive
+def test_derivations_are_typed():
+    result = heavytop.derive("lagrange", "phi-theta", 2)
+    expected = cli_json("derive", "--method", "lagrange", "--sequence", "phi-theta", "--order", "2")
+    assert isinstance(result, heavytop.Derivation) and result.to_dict() == expected
+    assert result.M == tuple(tuple(row) for row in expected["M"]) and len(result.K) == 2
+    assert result.stability_condition == expected["stability_condition"]
+    rotations = heavytop.derive_rotations(2)
+    assert rotations.commutator == tuple(tuple(row) for row in rotations["commutator"])
+    check = heavytop.derive_check(1)
+    assert check.all_as_expected is True and len(check.rows) == len(check["rows"])
+    assert all(row.order == 1 and row.as_expected for row in check.rows)
