@@ -8,6 +8,7 @@
 #include "common.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/compare.hpp"
+#include "heavytop/simulate.hpp"
 
 namespace heavytop::cli {
 Action add_compare_command(CLI::App& app) {
@@ -20,10 +21,21 @@ Action add_compare_command(CLI::App& app) {
   cmd->add_option("--samples", *samples, "samples over the horizon (>= 3)")->default_str("10001");
   cmd->add_option("--rtol", tol->rtol, "nonlinear: relative tolerance per step")->default_str(fmt::format("{}", tol->rtol));
   cmd->add_option("--atol", tol->atol, "nonlinear: absolute tolerance per step")->default_str(fmt::format("{}", tol->atol));
-  return [inputs, t_end, samples, tol] {
+  auto max_steps = std::make_shared<long long>(0);
+  auto* max_steps_option = cmd->add_option("--max-steps", *max_steps, "nonlinear: the most integration steps before it gives up")
+                               ->default_str(fmt::format("{}", tol->max_steps));
+  return [inputs, t_end, samples, tol, max_steps, max_steps_option] {
     inputs->resolve();
     if (!(std::isfinite(*t_end) && *t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
-    if (*samples < 3 || *samples > 100'000'000) throw InvalidInput("--samples", "must be an integer in [3, 100000000]");
+    // compare holds every model's whole trajectory (it measures frequencies over all of it).
+    if (*samples < 3 || *samples > 2'000'000) throw InvalidInput("--samples", "must be an integer in [3, 2000000]");
+    if (const double longest = longest_meaningful_time(inputs->body(), inputs->state()); *t_end > longest)
+      throw InvalidInput("--t-end", fmt::format("too long: beyond {:.3g} s a double no longer resolves the phase of "
+                                                "this motion to 1e-3 rad", longest));
+    if (max_steps_option->count()) {
+      if (*max_steps < 1) throw InvalidInput("--max-steps", "must be an integer >= 1");
+      tol->max_steps = static_cast<std::size_t>(*max_steps);
+    }
     validate(*tol);
     const Comparison c = compare_models(inputs->body(), inputs->state(),
                                         sample_times(*t_end, static_cast<std::size_t>(*samples)), *tol);

@@ -1,5 +1,7 @@
 // heavytop: the command-line tool. Thin: parses, calls the library, formats.
+#include <filesystem>
 #include <iostream>
+#include <new>
 #include <map>
 
 #include <fmt/format.h>
@@ -55,6 +57,12 @@ int main(int argc, char** argv) {
   } catch (const InvalidInput& e) {
     std::cerr << fmt::format("heavytop: error: {}: {}\n", cli::flag_of(e.key()), e.rule());
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "heavytop: error: out of memory (fewer --samples, or --format csv, which streams)\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {  // its what() is the library's wording
+    std::cerr << fmt::format("heavytop: error: cannot use '{}': {}\n", e.path1().string(), e.code().message());
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << fmt::format("heavytop: error: {}\n", e.what());
     return 1;

@@ -62,6 +62,9 @@ Action add_sweep_command(CLI::App& app) {
   cmd->add_option("--max-tilt", s->options.max_tilt, "rad, a nonlinear run is stable if its tilt stays below")->default_str("0.5");
   cmd->add_option("--rtol", s->options.integrator.rtol, "nonlinear: relative tolerance per step");
   cmd->add_option("--atol", s->options.integrator.atol, "nonlinear: absolute tolerance per step");
+  cmd->add_option("--max-steps", s->options.integrator.max_steps,
+                  "nonlinear: the most integration steps one point's run may take")
+      ->default_str(fmt::format("{}", s->options.integrator.max_steps));
   return [inputs, s] {
     inputs->resolve();
     if (s->vary.size() > 2) throw InvalidInput("--vary", "give one or two parameters");

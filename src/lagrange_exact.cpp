@@ -6,6 +6,8 @@
 #include <complex>
 #include <limits>
 
+#include <stdexcept>
+
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 
@@ -24,9 +26,27 @@ constexpr double kTwoPi = 6.283185307179586;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double rf(double x, double y, double z) { return boost::math::ellint_rf(x, y, z, MathPolicy()); }
+// Carlson's integrals are infinite exactly where the motion starts on the separatrix of an
+// unstable equilibrium (modulus k = 1 with the start at its end: the phase tau0 is infinite).
+// Boost then reports a domain error; we say what it means.
+[[noreturn]] void separatrix() {
+  throw std::runtime_error(
+      "lagrange-exact: the motion starts on (or within rounding of) the separatrix of an unstable "
+      "equilibrium, where the closed form's phase is infinite; the nonlinear model integrates it");
+}
+double rf(double x, double y, double z) {
+  try {
+    return boost::math::ellint_rf(x, y, z, MathPolicy());
+  } catch (const std::domain_error&) {
+    separatrix();
+  }
+}
 double rj(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p, MathPolicy());
+  try {
+    return boost::math::ellint_rj(x, y, z, p, MathPolicy());
+  } catch (const std::domain_error&) {
+    separatrix();
+  }
 }
 
 using Detail = LagrangeTop::Detail;

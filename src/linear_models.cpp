@@ -44,8 +44,9 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
       // B theta_b'' - (C - A - B) w0 phi_b' + ((C - A) w0^2 - k) theta_b = 0
       m.G1 << 0.0, C - A - B, -(C - A - B), 0.0;
       m.K2 << C - B, 0.0, 0.0, C - A;
-      // (C - A - B)^2 + 2 (A (C - A) + B (C - B)) = C^2 - (A - B)^2, as a product.
-      m.gyro_stiffness = (C - A + B) * (C + A - B);
+      // (C - A - B)^2 + 2 (A (C - A) + B (C - B)) = C^2 - (A - B)^2, as a product whose
+      // factors keep C whole when C << A = B (C - A + B would cancel to C's rounding error).
+      m.gyro_stiffness = (C + (B - A)) * (C - (B - A));
       break;
   }
   return m;

@@ -33,7 +33,7 @@ BoolArray = npt.NDArray[np.bool_]
 Matrix = Tuple[Tuple[str, ...], ...]
 
 
-class JsonResult(Mapping):  # Mapping[str, Any]
+class JsonResult(Mapping[str, Any]):
     """A result that reads like the command line's JSON object: ``result[key]`` and
     ``to_dict()`` give json.loads of the command's output (copies: changing them changes
     nothing here); the attributes give the same values typed."""
@@ -316,7 +316,7 @@ def _column(name: str, doc: str) -> property:
     return property(get, doc=doc)
 
 
-class Trajectory(Mapping):  # Mapping[str, FloatArray]
+class Trajectory(Mapping[str, FloatArray]):
     """The motion of one model, column by column as `heavytop simulate --format csv` prints it:
     float64 NumPy arrays, one element per sample. ``result["theta"]`` and ``result.theta``
     are the same array; ``to_dict()`` is the dict of every column, in the CSV's order."""
@@ -384,7 +384,7 @@ class Trajectory(Mapping):  # Mapping[str, FloatArray]
 
 # ---- sweep -----------------------------------------------------------------------------------
 
-class StabilityMap(Mapping):  # Mapping[str, FloatArray | BoolArray]
+class StabilityMap(Mapping[str, npt.NDArray[Any]]):
     """Each model's verdict over a grid, column by column as `heavytop sweep` prints it: the
     varied values (float64), then a bool column per model, one element per grid point
     (row-major, the first key slowest). ``to_dict()`` is the dict of every column."""

@@ -1,8 +1,8 @@
-"""Shared helpers: the heavytop module and the command-line binary it is checked against.
+"""Shared helpers: the heavytop package and the command-line binary it is checked against.
 
 Run by ctest (test `python`), which sets PYTHONPATH to the build tree's folder that holds the
-package heavytop/ (build/python) and HEAVYTOP to the
-binary. By hand:  PYTHONPATH=build/python HEAVYTOP=build/heavytop /usr/bin/python3 -m pytest python/tests
+package heavytop/ (build/python) and HEAVYTOP to the binary. By hand:
+    PYTHONPATH=build/python HEAVYTOP=build/heavytop /usr/bin/python3 -m pytest python/tests
 """
 import json
 import os
