@@ -27,11 +27,9 @@ Action add_compare_command(CLI::App& app) {
   return [inputs, t_end, samples, tol, max_steps, max_steps_option] {
     inputs->resolve();
     if (!(std::isfinite(*t_end) && *t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
-    // compare holds every model's whole trajectory (it measures frequencies over all of it).
-    if (*samples < 3 || *samples > 2'000'000) throw InvalidInput("--samples", "must be an integer in [3, 2000000]");
-    if (const double longest = longest_meaningful_time(inputs->body(), inputs->state()); *t_end > longest)
-      throw InvalidInput("--t-end", fmt::format("too long: beyond {:.3g} s a double no longer resolves the phase of "
-                                                "this motion to 1e-3 rad", longest));
+    if (*samples < 3 || *samples > static_cast<long long>(kMaxComparisonSamples))
+      throw InvalidInput("--samples", fmt::format("must be an integer in [3, {}]", kMaxComparisonSamples));
+    validate_horizon(inputs->body(), inputs->state(), *t_end, "--t-end");
     if (max_steps_option->count()) {
       if (*max_steps < 1) throw InvalidInput("--max-steps", "must be an integer >= 1");
       tol->max_steps = static_cast<std::size_t>(*max_steps);

@@ -122,6 +122,12 @@ double longest_meaningful_time(const Body& body, const InitialState& initial) {
   return rate > 0.0 ? 1e-3 / (std::numeric_limits<double>::epsilon() * rate) : std::numeric_limits<double>::infinity();
 }
 
+void validate_horizon(const Body& body, const InitialState& initial, double horizon, const std::string& key) {
+  if (const double longest = longest_meaningful_time(body, initial); horizon > longest)
+    throw InvalidInput(key, fmt::format("too long: beyond {:.3g} s a double no longer resolves the phase of this "
+                                        "motion to 1e-3 rad", longest));
+}
+
 namespace {
 
 /// Everything simulate() and simulate_streaming() do, over any stream of samples.
@@ -134,10 +140,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
     throw InvalidInput(why.substr(0, colon), colon == std::string::npos ? why : why.substr(colon + 2));
   }
   if (model == Model::LagrangeExact) validate_symmetric(body);
-  const double horizon = stream.count ? stream.time(stream.count - 1) : 0.0;
-  if (const double longest = longest_meaningful_time(body, initial); horizon > longest)
-    throw InvalidInput(time_key, fmt::format("too long: beyond {:.3g} s a double no longer resolves the phase of "
-                                             "this motion to 1e-3 rad", longest));
+  validate_horizon(body, initial, stream.count ? stream.time(stream.count - 1) : 0.0, time_key);
 
   SimulationSummary s;
   s.model = model;

@@ -22,6 +22,10 @@ struct MotionFrequencies {
 /// nutation; interior maxima are refined by a parabola through three samples).
 MotionFrequencies measure_frequencies(const Trajectory& trajectory);
 
+/// The most samples a comparison may have: it holds every model's whole trajectory (it
+/// measures frequencies over all of it), about 200 bytes a sample.
+inline constexpr std::size_t kMaxComparisonSamples = 2'000'000;
+
 /// rad, the tilt angle beyond which a linear (small-motion) model counts as diverged.
 inline constexpr double kDivergedAngle = 1.0;
 

@@ -117,6 +117,10 @@ struct Simulation {
 /// rounding noise, and simulate() refuses the times (InvalidInput key "t_end" or "times").
 double longest_meaningful_time(const Body& body, const InitialState& initial);
 
+/// Throws InvalidInput(key, "too long: ...") if `horizon` (s) is beyond
+/// longest_meaningful_time(body, initial).
+void validate_horizon(const Body& body, const InitialState& initial, double horizon, const std::string& key);
+
 /// Receives consecutive pieces of a trajectory (same columns, at most `chunk` samples each).
 using TrajectorySink = std::function<void(const Trajectory&)>;
 

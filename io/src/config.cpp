@@ -39,6 +39,22 @@ std::vector<std::string> keys_starting(std::string_view prefix) {
   return keys;
 }
 
+// Text from the user (a path, a TOML key, a parser's description quoting the input) as it
+// goes into a one-line message: control characters are shown escaped (\n, \x01).
+std::string printable(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) out += c;
+    else if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c == '\r') out += "\\r";
+    else out += fmt::format("\\x{:02x}", u);
+  }
+  return out;
+}
+
 double number_of(const toml::node& node, const std::string& key) {
   if (auto v = node.value_exact<double>()) return *v;
   if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
@@ -98,30 +114,22 @@ std::optional<std::string> Configuration::string(const std::string& key) const {
   throw InvalidInput(key, "must be a string");
 }
 
-Configuration read_configuration(const std::string& path, const std::string& path_key) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InvalidInput(path_key, fmt::format("cannot read '{}': no such file", path));
-  if (fs::is_directory(path, ec)) throw InvalidInput(path_key, fmt::format("cannot read '{}': it is a folder", path));
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw InvalidInput(path_key, fmt::format("cannot read '{}'", path));
+Configuration parse_configuration(std::string_view text, const std::string& source, const std::string& path_key) {
   toml::table table;
   try {
-    table = toml::parse(text.str(), path);
+    table = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     const auto& where = e.source().begin;
-    throw InvalidInput(path_key, fmt::format("{}:{}:{}: malformed TOML: {}", path, where.line, where.column,
-                                             e.description()));
+    throw InvalidInput(path_key, fmt::format("{}:{}:{}: malformed TOML: {}", printable(source), where.line,
+                                             where.column, printable(e.description())));
   }
   Configuration config;
-  config.path = path;
+  config.path = source;
   const auto& sections = command_sections();
   for (const auto& [section_key, node] : table) {
     const std::string section(section_key.str());
     const bool known = section == "body" || section == "motion" || sections.count(section);
-    if (!known) throw InvalidInput(section, "unknown section in " + path);
+    if (!known) throw InvalidInput(printable(section), "unknown section in " + printable(source));
     const auto* sub = node.as_table();
     if (!sub) throw InvalidInput(section, "must be a [section] table");
     config.has_body = config.has_body || section == "body";
@@ -134,7 +142,7 @@ Configuration read_configuration(const std::string& path, const std::string& pat
       }
       const auto it = sections.find(section);
       if (it == sections.end() || std::find(it->second.begin(), it->second.end(), name_key.str()) == it->second.end())
-        throw InvalidInput(key, "unknown key in " + path);
+        throw InvalidInput(printable(key), "unknown key in " + printable(source));
       if (auto s = value.value_exact<std::string>()) config.settings[key] = *s;
       else if (auto i = value.value_exact<std::int64_t>()) config.settings[key] = *i;
       else if (auto d = value.value_exact<double>()) config.settings[key] = *d;
@@ -143,6 +151,26 @@ Configuration read_configuration(const std::string& path, const std::string& pat
     }
   }
   return config;
+}
+
+Configuration read_configuration(const std::string& path, const std::string& path_key) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string shown = printable(path);
+  if (!fs::exists(path, ec)) throw InvalidInput(path_key, fmt::format("cannot read '{}': no such file", shown));
+  if (fs::is_directory(path, ec)) throw InvalidInput(path_key, fmt::format("cannot read '{}': it is a folder", shown));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
+  // One byte more than the limit tells a file at the limit from a larger one (or an endless
+  // device); a pipe is read as far as that too.
+  std::string text(kMaxConfigurationBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxConfigurationBytes)
+    throw InvalidInput(path_key, fmt::format("'{}' is larger than {} bytes: not a configuration file", shown,
+                                             kMaxConfigurationBytes));
+  return parse_configuration(text, path, path_key);
 }
 
 }  // namespace heavytop::io

@@ -119,16 +119,18 @@ def compare(body: Body, *, spin: float = 0.0, theta0: float = 0.0, phi0: float =
         spin, theta0, phi0,       the initial state (rad/s, rad, rad, rad/s, rad/s; keyword only,
         theta_rate0, phi_rate0    default 0)
         t_end                     s, horizon (> 0; default 10)                     [--t-end]
-        samples                   samples over the horizon (>= 3; default 10001)   [--samples]
+        samples                   samples over the horizon (3 to 2000000: every model's whole
+                                  trajectory is held; default 10001)             [--samples]
         rtol, atol                nonlinear: tolerances per step (default 1e-12)   [--rtol, --atol]
 
     Returns a Comparison: .nonlinear (the truth: .nutation_frequency, .precession_rate (rad/s),
     .steps, .max_relative_energy_drift) and .models[NAME] (first-order, body-fixed,
     linearized, and lagrange-exact when A = B) with .max_angle_error, .final_angle_error (rad,
     the larger of |d theta| and |d phi|), .nutation_frequency, .precession_rate (rad/s),
-    .nutation_relative_error, .precession_relative_error. As a Mapping and by .to_dict() it is
+    .nutation_relative_error, .precession_relative_error, or .diverged_at (s) for a linear model
+    whose angles passed 1 rad (its errors after that and frequencies are None). As a Mapping and by .to_dict() it is
     json.loads of `heavytop compare --format json`. Runs with the GIL released; Ctrl-C stops it.
-    Bad input raises InvalidInput (a ValueError): "samples: must be an integer in [3, 100000000]".
+    Bad input raises InvalidInput (a ValueError): "samples: must be an integer in [3, 2000000]".
     """
     return Comparison.from_json(_core.compare(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                               phi_rate0=phi_rate0, t_end=t_end, samples=samples, rtol=rtol,

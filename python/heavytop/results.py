@@ -141,9 +141,9 @@ class ModelComparison(JsonResult):
     """One approximate model against the nonlinear body."""
 
     max_angle_error: float
-    """rad, max over the samples of the larger of |d theta| and |d phi|."""
-    final_angle_error: float
-    """rad, the same at the last sample."""
+    """rad, max over the samples of the larger of |d theta| and |d phi| (until diverged_at)."""
+    final_angle_error: Optional[float]
+    """rad, the same at the last sample (None when the model diverged)."""
     nutation_frequency: Optional[float]
     """rad/s, measured from the model's own trajectory."""
     precession_rate: Optional[float]
@@ -152,6 +152,8 @@ class ModelComparison(JsonResult):
     """|nutation - truth| / truth."""
     precession_relative_error: Optional[float]
     """|precession - truth| / |truth|."""
+    diverged_at: Optional[float]
+    """s, when a linear model's angles passed 1 rad (beyond any small-motion meaning), or None."""
     _data: Dict[str, Any] = field(repr=False)
 
     @classmethod
@@ -159,7 +161,8 @@ class ModelComparison(JsonResult):
         return cls(max_angle_error=data["max_angle_error"], final_angle_error=data["final_angle_error"],
                    nutation_frequency=data["nutation_frequency"], precession_rate=data["precession_rate"],
                    nutation_relative_error=data["nutation_relative_error"],
-                   precession_relative_error=data["precession_relative_error"], _data=data)
+                   precession_relative_error=data["precession_relative_error"],
+                   diverged_at=data.get("diverged_at"), _data=data)
 
 
 @dataclass(frozen=True, eq=False)

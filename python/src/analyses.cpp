@@ -6,6 +6,7 @@
 #include "common.hpp"
 #include "docs.hpp"
 #include "heavytop/compare.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/stability.hpp"
 #include "interrupt.hpp"
@@ -28,7 +29,8 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
   validate(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   require_positive("t_end", t_end);
-  require_count("samples", samples, 3, 100'000'000);
+  require_count("samples", samples, 3, static_cast<long long>(kMaxComparisonSamples));
+  validate_horizon(body, state, t_end, "t_end");
   NonlinearOptions options = tolerances(rtol, atol);
   options.progress = poll_signals();
   return from_json(without_gil([&] {

@@ -52,10 +52,19 @@ struct Configuration {
   std::optional<std::string> string(const std::string& key) const;
 };
 
-/// Reads `path`. Throws InvalidInput naming `path_key` (e.g. "--config") when the file cannot
-/// be read or is not TOML, and the offending "section.key" for an unknown section or key or a
-/// value of the wrong type. Does not check the body's rules (validate() does, once the
-/// command line's values are applied).
+/// Parses `text`, a configuration's content; `source` names it in messages (a path). Throws
+/// InvalidInput naming `path_key` (e.g. "--config") when it is not TOML, and the offending
+/// "section.key" for an unknown section or key or a value of the wrong type; nothing else for
+/// any bytes (fuzz/fuzz_config.cpp). Does not check the body's rules (validate() does, once
+/// the command line's values are applied).
+Configuration parse_configuration(std::string_view text, const std::string& source, const std::string& path_key);
+
+/// The largest configuration file read_configuration() reads (bytes): more is refused, so a
+/// device such as /dev/zero given as a file is bad input, not an endless read.
+inline constexpr std::size_t kMaxConfigurationBytes = 1 << 20;
+
+/// Reads `path` (at most kMaxConfigurationBytes) and parses it as parse_configuration() does.
+/// Throws InvalidInput naming `path_key` also when the file cannot be read or is too large.
 Configuration read_configuration(const std::string& path, const std::string& path_key);
 
 }  // namespace heavytop::io
