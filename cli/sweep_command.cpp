@@ -74,7 +74,7 @@ Action add_sweep_command(CLI::App& app) {
     validate_sweep(inputs->body(), inputs->state(), axes, s->options);
 
     const std::size_t total = grid_size(axes);
-    const std::string& path = inputs->output();
+    const std::string path = io::resolved(inputs->output());
     const std::string partial = path + ".partial", args_file = path + ".partial.args";
     const std::string args = fingerprint(*inputs, axes, s->options);
     const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);

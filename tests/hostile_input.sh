@@ -27,6 +27,12 @@ mkfifo fifo
 check "a FIFO is written directly" run 0 simulate --model first-order --samples 11 --output fifo
 wait
 check "the FIFO is still a FIFO with the rows through it" bash -c 'test -p fifo && [ "$(wc -l < from_fifo)" -eq 12 ]'
+check "--output /dev/stdout redirected to a file writes the file, /dev/stdout stays a link" bash -c "
+  '$H' simulate --model first-order --samples 11 --output /dev/stdout > redirected.csv && [ \$(wc -l < redirected.csv) -eq 12 ] && test -L /dev/stdout"
+echo old > target.csv; ln -s target.csv link.csv
+check "a symbolic link is written through: its target replaced, the link kept" bash -c "
+  '$H' simulate --model first-order --samples 11 --output link.csv && test -L link.csv && [ \$(wc -l < target.csv) -eq 12 ]"
+check "the same for a sweep" bash -c "'$H' sweep --vary spin=0:1:3 --output link.csv && test -L link.csv && head -1 target.csv | grep -q '^spin,'"
 check "--output - is stdout" run 0 simulate --model first-order --samples 11 --output -
 check "... with the rows" test "$(wc -l < out)" -eq 12
 check "a missing folder is bad input" run 2 simulate --samples 11 --output no/such/folder.csv

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <new>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -122,6 +122,10 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
     const auto& where = e.source().begin;
     throw InvalidInput(path_key, fmt::format("{}:{}:{}: malformed TOML: {}", printable(source), where.line,
                                              where.column, printable(e.description())));
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {  // toml++ documents only parse_error; anything else is still bad input
+    throw InvalidInput(path_key, fmt::format("{}: malformed TOML: {}", printable(source), printable(e.what())));
   }
   Configuration config;
   config.path = source;

@@ -49,11 +49,19 @@ std::pair<std::string, int> temporary_beside(const std::string& target, const st
   return {pattern, fd};
 }
 
-/// True if `path` exists and is not a regular file (or a link to one).
+/// True if `path` exists and is written directly: not a regular file (a device, a FIFO, a
+/// socket, a folder), or a name in /dev or /proc (/dev/stdout, /proc/self/fd/1 name whatever
+/// the process writes to, even a regular file it was redirected to: never replace it).
 bool is_special(const std::string& path) {
   struct stat s {};
-  return ::stat(path.c_str(), &s) == 0 && !S_ISREG(s.st_mode);
+  if (::stat(path.c_str(), &s) != 0) return false;
+  if (!S_ISREG(s.st_mode)) return true;
+  std::error_code ec;
+  const std::string absolute = fs::absolute(path, ec).lexically_normal().string();
+  return absolute.starts_with("/dev/") || absolute.starts_with("/proc/");
 }
+
+
 
 // The temporary and lock files open now, for the signal handler: plain pointers to the paths' bytes
 // (owned by their OutputStream), read and unlinked with async-signal-safe calls only.
@@ -138,6 +146,7 @@ OutputStream::OutputStream(std::string path, std::string key) : path_(std::move(
     owns_file_ = true;
     return;
   }
+  path_ = resolved(path_);
   lock_.emplace(path_, key_);
   auto [temporary, fd] = temporary_beside(path_, key_);
   temporary_ = std::move(temporary);
@@ -176,6 +185,13 @@ void OutputStream::commit() {
   if (!temporary_.empty() && std::rename(temporary_.c_str(), path_.c_str()) != 0)
     throw Failure(fmt::format("{}: cannot replace '{}': {}", key_, path_, std::strerror(errno)));
   committed_ = true;
+}
+
+std::string resolved(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_symlink(path, ec)) return path;
+  const fs::path target = fs::weakly_canonical(path, ec);
+  return ec ? path : target.string();
 }
 
 bool is_regular_target(const std::string& path) { return !path.empty() && path != "-" && !is_special(path); }

@@ -76,6 +76,10 @@ class OutputStream {
 /// rename: it names a regular file or nothing yet.
 bool is_regular_target(const std::string& path);
 
+/// The file a path names: a symbolic link's target (a file written through a temporary name
+/// and a rename replaces the target, and the link stays a link), else the path itself.
+std::string resolved(const std::string& path);
+
 /// Gives `file` the mode `target` has, if `target` exists (so that replacing a file keeps its
 /// permissions).
 void copy_mode(const std::string& target, const std::string& file);
