@@ -1,0 +1,98 @@
+// The cost of one call of the built command, start-up included, as scripts pay it (they call
+// heavytop once per body). Each iteration spawns the binary once, its output to /dev/null, and
+// waits for it. Reported per call:
+//   real time   wall time, spawn to exit (Google Benchmark's manual time)
+//   cpu_ms      CPU time of the child, user + system, from wait4()'s rusage (ms)
+// Run: build/bench/bench_startup --heavytop=build/heavytop --benchmark_repetitions=5
+//      --benchmark_report_aggregates_only=true   (medians over repetitions of 100 calls)
+
+#include <benchmark/benchmark.h>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+std::string g_heavytop = "heavytop";
+
+/// Runs `args` once; returns the child's CPU time (s) and adds the wall time to `wall` (s).
+double run_once(const std::vector<std::string>& args, double& wall) {
+  std::vector<char*> argv;
+  argv.push_back(g_heavytop.data());
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  if (posix_spawn(&pid, g_heavytop.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
+    posix_spawn_file_actions_destroy(&actions);
+    return -1.0;
+  }
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1.0;
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+void Call(benchmark::State& state, std::vector<std::string> args) {
+  double cpu = 0.0;
+  std::size_t calls = 0;
+  for (auto _ : state) {
+    double wall = 0.0;
+    const double c = run_once(args, wall);
+    if (c < 0.0) {
+      state.SkipWithError("the command failed (is --heavytop=PATH right?)");
+      return;
+    }
+    cpu += c;
+    ++calls;
+    state.SetIterationTime(wall);
+  }
+  state.counters["cpu_ms"] = benchmark::Counter(1e3 * cpu / static_cast<double>(calls));
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(Call, stability_json, {"stability", "--format", "json"})->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Call, simulate_first_order_101, {"simulate", "--model", "first-order", "--samples", "101"})
+    ->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Call, simulate_nonlinear_1ms, {"simulate", "--model", "nonlinear", "--t-end", "1e-3"})
+    ->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Call, derive, {"derive"})->UseManualTime()->Iterations(20)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char** argv) {
+  // --heavytop=PATH: the binary to time (default: heavytop beside this benchmark's build tree).
+  std::vector<char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--heavytop=", 11) == 0) g_heavytop = argv[i] + 11;
+    else rest.push_back(argv[i]);
+  }
+  if (g_heavytop == "heavytop") {
+    const auto here = std::filesystem::canonical("/proc/self/exe").parent_path();
+    g_heavytop = (here.parent_path() / "heavytop").string();
+  }
+  int count = static_cast<int>(rest.size());
+  benchmark::Initialize(&count, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
