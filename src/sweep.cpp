@@ -1,5 +1,7 @@
 #include "heavytop/sweep.hpp"
 
+#include "heavytop/lyapunov.hpp"
+
 #include "heavytop/frames.hpp"
 
 #include <charconv>
@@ -178,6 +180,7 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
           SweepVerdict& v = out[i];
           for (std::size_t m = 0; m < kLinearModels.size(); ++m)
             v.linear[m] = linear_stability(linear_model(kLinearModels[m], body), state.spin).stable;
+          v.lyapunov = lyapunov_stability(body, state.spin).verdict == LyapunovVerdictKind::Stable;
           if (options.nonlinear)
             v.nonlinear = max_tilt(body, state, options.horizon, options.max_tilt, options.integrator) <= options.max_tilt;
         } catch (...) {

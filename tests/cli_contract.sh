@@ -44,6 +44,36 @@ assert d["body"]["length"] == -1.0
 assert d["models"]["first-order"]["critical_spin"] == 0.0
 assert d["models"]["first-order"]["stable_spin_intervals"] == [[0.0, None]]'
 
+# ---- SPEC 7: the Lyapunov verdict beside "models", and the wander ----------------------------
+crit=(--A 1 --B 1 --C 2 --mass 1 --gravity 1 --length 1 --spin 1 --theta0 1e-3)
+"$H" stability "${crit[@]}" --format json > lyap.json
+check "lyapunov at the boundary of (9): critical-quartic, wander 2 asin(sqrt(sin(delta/2)))" python3 -c '
+import json, math; d = json.load(open("lyap.json"))
+assert list(d)[-2:] == ["lyapunov", "wander"], list(d)
+l = d["lyapunov"]
+assert list(l) == ["verdict", "certificate", "energy_index", "stable_spin_intervals", "superfast_spin"], l
+assert l == {"verdict": "stable", "certificate": "critical-quartic", "energy_index": 0,
+             "stable_spin_intervals": [[1.0, None]], "superfast_spin": 1.0}, l
+assert d["models"]["first-order"]["stable"] is False   # the linear model grows (E2)
+w = d["wander"]
+assert w["method"] == "closed form" and w["horizon"] is None, w
+assert abs(w["max_tilt"] - 2 * math.asin(math.sqrt(math.sin(5e-4)))) < 1e-12, w'
+"$H" stability "${crit[@]}" > lyap.txt
+check "lyapunov text: the proof, the boundary, the wander" bash -c '
+grep -q "^  Lyapunov: stable (proof: " lyap.txt && grep -q "the linear models grow" lyap.txt &&
+grep -q "^  Axis wander from the given state: largest tilt 0.0447251 rad (closed form)" lyap.txt'
+rm -f lyap.txt
+hang_asym=(--A 1 --B 1.2 --C 0.7 --mass 1 --gravity 1 --length -1 --theta0 1e-4)
+"$H" stability "${hang_asym[@]}" --spin 2 --horizon 20 --format json > undecided.json
+check "index 2, linearly stable, A != B: undecided, certificate none; [0, sqrt 2) proven" python3 -c '
+import json; d = json.load(open("undecided.json")); l = d["lyapunov"]
+assert d["models"]["linearized"]["stable"] is True
+assert (l["verdict"], l["certificate"], l["energy_index"], l["superfast_spin"]) == ("undecided", "none", 2, None), l
+assert l["stable_spin_intervals"] == [[0.0, 2 ** 0.5]], l
+w = d["wander"]; assert w["method"] == "integrated" and w["horizon"] == 20.0 and 1e-4 <= w["max_tilt"] < 1.2e-4, w'
+check "undecided text says the KAM test is not built" bash -c "'$H' stability ${hang_asym[*]} --spin 2 --horizon 20 | grep -q 'Lyapunov: undecided (index 2: gyroscopic stability only, destroyed by internal damping; the KAM test is not built'"
+check "odd index" bash -c "'$H' stability ${hang_asym[*]} --spin 1.6 --horizon 5 --format json | python3 -c 'import json,sys; l = json.load(sys.stdin)[\"lyapunov\"]; assert (l[\"verdict\"], l[\"certificate\"], l[\"energy_index\"]) == (\"unstable\", \"odd-index\", 1), l'"
+
 # No spin stabilises the body-fixed model of a sphere-like body: critical_spin null.
 "$H" stability --config ok.toml --A 2 --B 2 --C 2 --format json > sphere.json
 check "A=B=C body-fixed never stable" python3 -c '
@@ -81,6 +111,7 @@ for cmd in stability simulate; do
 done
 
 printf '[body]\nA = 1.0\nB = 1.0\nC = 2.0\nmass = -1.0\nlength = 1.0\n' > neg.toml
+check "stability --horizon is checked" refused horizon stability --config ok.toml --horizon 0
 check "negative mass in file" refused body.mass stability --config neg.toml
 printf '[body]\nA = 1.0\nB = 1.0\nC = 2.0\nmass = 1.0\nlength = 1.0\ncolour = 3\n' > unknown_key.toml
 check "unknown key" refused body.colour stability --config unknown_key.toml

@@ -11,11 +11,21 @@ check "sweep exit 0" test $? -eq 0
 check "sweep rows" python3 - map.csv <<'PY'
 import csv, sys
 rows = list(csv.reader(open(sys.argv[1])))
-assert rows[0] == ["B/A", "spin", "first-order", "body-fixed", "linearized"], rows[0]
+assert rows[0] == ["B/A", "spin", "first-order", "body-fixed", "linearized", "lyapunov"], rows[0]
 assert len(rows) == 1 + 200
 grid = [(float(r[0]), float(r[1])) for r in rows[1:]]
 assert grid == sorted(grid) and len(set(grid)) == 200
-assert all(r[2] in "01" and r[3] in "01" and r[4] in "01" for r in rows[1:])
+assert all(r[2] in "01" and r[3] in "01" and r[4] in "01" and r[5] in "01" for r in rows[1:])
+# Proven Lyapunov stable (SPEC 7) needs the exact linearisation stable; here (A = 1, C = 1.5,
+# m g R = 1, B = 0.6 ... 2.4) index 0 needs C > B: s > 1 / (C - 1) = 2 and s > 1 / (C - B).
+for r in rows[1:]:
+    ratio, w = float(r[0]), float(r[1])
+    assert r[5] == "0" or r[4] == "1", r
+    if abs(ratio - 1.0) > 1e-12 and abs(1.5 - ratio) > 1e-9:
+        s1, s2 = 0.5 * w * w - 1.0, (1.5 - ratio) * w * w - 1.0
+        if min(abs(s1), abs(s2)) > 1e-9:
+            assert (r[5] == "1") == (s1 > 0 and s2 > 0), r
+assert sum(r[5] == "1" for r in rows[1:]) > 0
 PY
 check "no partial left" test ! -e map.csv.partial -a ! -e map.csv.partial.args
 
@@ -46,7 +56,8 @@ assert rows[0][-1] == "nonlinear" and len(rows) == 49
 v = {float(r[0]): r for r in rows[1:]}
 lo = [r for s, r in v.items() if s < 1.40]; hi = [r for s, r in v.items() if s > 1.45]
 assert all(r[3] == "0" for r in lo) and all(r[3] == "1" for r in hi)   # linearized: sqrt 2
-assert all(r[4] == "0" for r in lo[:3]) and all(r[4] == "1" for r in hi)  # the body falls below it'
+assert rows[0][4] == "lyapunov" and all(r[4] == ("1" if s > 2 ** 0.5 else "0") for s, r in v.items())  # superfast above sqrt 2
+assert all(r[5] == "0" for r in lo[:3]) and all(r[5] == "1" for r in hi)  # the body falls below it'
 # Other arguments do not resume a partial file: it starts over.
 cp resumed.csv other.csv.partial; echo "made with other arguments" > other.csv.partial.args
 "$H" sweep "${common[@]}" --vary spin=1.2:2.2:5 --output other.csv >/dev/null 2>&1

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// Stability maps: each linear model's verdict (and optionally the nonlinear body's practical
-/// verdict) over a grid of one or two parameters.
+/// Stability maps: each linear model's verdict, the real body's Lyapunov verdict (proven stable
+/// or not, lyapunov.hpp), and optionally the nonlinear body's practical verdict, over a grid of
+/// one or two parameters.
 
 #include <array>
 #include <cstddef>
@@ -68,6 +69,8 @@ struct SweepOptions {
 /// The verdicts at one grid point.
 struct SweepVerdict {
   std::array<bool, 3> linear{};   ///< stable? first-order, body-fixed, linearized (kLinearModels order)
+  /// Proven Lyapunov stable (lyapunov_stability's verdict is Stable; undecided counts as false).
+  bool lyapunov = false;
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
 };
 

@@ -20,7 +20,9 @@ Json body_json(const Body& b) {
 
 }  // namespace
 
-std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models) {
+namespace {
+
+Json stability_object(const Body& body, double spin, const std::vector<ModelStability>& models) {
   Json out;
   out["body"] = body_json(body);
   out["spin"] = spin;
@@ -39,6 +41,41 @@ std::string stability_json(const Body& body, double spin, const std::vector<Mode
     by_name[std::string(name(r.kind))] = m;
   }
   out["models"] = by_name;
+  return out;
+}
+
+}  // namespace
+
+std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models) {
+  return stability_object(body, spin, models).dump(2) + "\n";
+}
+
+namespace {
+
+Json intervals_json(const std::vector<SpinInterval>& intervals) {
+  Json a = Json::array();
+  for (const auto& i : intervals) a.push_back({i.lo, optional_number(i.hi)});
+  return a;
+}
+
+}  // namespace
+
+std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models,
+                           const LyapunovStability& lyapunov, const Wander& wander) {
+  Json out = stability_object(body, spin, models);
+  Json l;
+  l["verdict"] = std::string(name(lyapunov.verdict.verdict));
+  l["certificate"] = std::string(name(lyapunov.verdict.certificate));
+  l["energy_index"] = lyapunov.verdict.energy_index;
+  l["stable_spin_intervals"] = intervals_json(lyapunov.intervals);
+  l["superfast_spin"] = optional_number(lyapunov.superfast);
+  out["lyapunov"] = l;
+  Json w;
+  w["max_tilt"] = optional_number(wander.max_tilt);
+  w["method"] = wander.closed_form ? "closed form" : "integrated";
+  w["horizon"] = optional_number(wander.horizon);
+  if (!wander.max_tilt) w["note"] = wander.note;
+  out["wander"] = w;
   return out.dump(2) + "\n";
 }
 
@@ -91,6 +128,34 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   if (is_symmetric(body) && body.mgR() > 0)
     out << "\nSymmetric top: the classical sleeping-top criterion C^2 w0^2 > 4 A m g R applies "
            "(strictly: at equality the motion grows, erratum E2).\n";
+  return out.str();
+}
+
+std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models,
+                           const LyapunovStability& lyapunov, const Wander& wander) {
+  std::ostringstream out;
+  out << stability_text(body, spin, models);
+  const LyapunovVerdict& v = lyapunov.verdict;
+  out << "\nThe real body (nonlinear, conservative), beyond the linearisation:\n";
+  out << fmt::format("  linearly stable (the exact linearisation): {}\n",
+                     models.back().verdict.stable ? "yes" : "no");
+  out << fmt::format("  Lyapunov: {} ({}; certificate {})\n", name(v.verdict), v.reason, name(v.certificate));
+  out << fmt::format("  energy index {} (s1 = {:.6g}, s2 = {:.6g} N m); proven stable for spins (rad/s): {}; "
+                     "superfast {}\n",
+                     v.energy_index, v.s1, v.s2, intervals_text(lyapunov.intervals),
+                     lyapunov.superfast ? fmt::format("from {:.6g} rad/s", *lyapunov.superfast) : "at no spin");
+  if (v.certificate == LyapunovCertificate::CriticalQuartic)
+    out << "  At the boundary of (9) the linear models grow (a Jordan block, erratum E2), but the real "
+           "symmetric top does not: started delta off vertical its tilt stays below about sqrt(2 delta).\n";
+  if (v.verdict == LyapunovVerdictKind::Undecided && v.energy_index == 2)
+    out << "  Not decided: only the KAM (Arnold-Moser) test could decide it, and it is not built; "
+           "internal damping (energy lost at constant momentum) destroys this rotation.\n";
+  if (wander.max_tilt)
+    out << fmt::format("  Axis wander from the given state: largest tilt {:.6g} rad ({})\n", *wander.max_tilt,
+                       wander.closed_form ? "closed form"
+                                          : fmt::format("integrated over {:g} s", wander.horizon.value_or(0.0)));
+  else
+    out << fmt::format("  Axis wander from the given state: not computed ({})\n", wander.note);
   return out.str();
 }
 
@@ -210,6 +275,7 @@ std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear)
   std::string h;
   for (const auto& a : axes) h += a.key + ",";
   for (std::size_t m = 0; m < kLinearModels.size(); ++m) h += fmt::format("{}{}", m ? "," : "", name(kLinearModels[m]));
+  h += ",lyapunov";
   if (nonlinear) h += ",nonlinear";
   return h + "\n";
 }
@@ -219,7 +285,8 @@ std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin
   for (std::size_t r = 0; r < verdicts.size(); ++r) {
     for (double value : grid_values(axes, begin + r)) fmt::format_to(std::back_inserter(out), "{},", value);
     const auto& v = verdicts[r];
-    fmt::format_to(std::back_inserter(out), "{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]));
+    fmt::format_to(std::back_inserter(out), "{},{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]),
+                   int(v.lyapunov));
     if (v.nonlinear) fmt::format_to(std::back_inserter(out), ",{}", int(*v.nonlinear));
     out.push_back('\n');
   }

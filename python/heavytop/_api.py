@@ -22,11 +22,18 @@ DeriveMethod = Literal["euler-moving", "euler-fixed", "euler-body", "lagrange"]
 Sequence = Literal["phi-theta", "theta-phi"]
 
 
-def stability(body: Body, spin: float) -> Stability:
-    """Linear stability of the first-order, body-fixed and linearized models at spin w0.
+def stability(body: Body, spin: float, *, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
+              phi_rate0: float = 0.0, horizon: float = 100.0) -> Stability:
+    """Linear stability of the first-order, body-fixed and linearized models at spin w0, the
+    real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders.
 
-        body   Body (SI units)
-        spin   rad/s, the spin w0 about the body axis
+        body         Body (SI units)
+        spin         rad/s, the spin w0 about the body axis
+        theta0, phi0, theta_rate0, phi_rate0
+                     rad, rad/s: the state the wander starts from (SPEC section 2); all 0 (the
+                     upright rotation, which never tilts) by default
+        horizon      s, > 0: for A != B the wander is the largest tilt of a nonlinear run this
+                     long (A = B: exact, from the Lagrange top's cubic)
 
     Returns a Stability: .body, .spin (rad/s), .models[NAME] (NAME first-order, body-fixed,
     linearized) with .stable, .critical_spin (rad/s or None), .stable_spin_intervals
@@ -37,10 +44,16 @@ def stability(body: Body, spin: float) -> Stability:
     "stable_spin_intervals": [[lo, hi], ...], "eigenvalues": [[re, im], ...],
     "frequencies": [...], "reason": str}, "body-fixed": {...}, "linearized": {...}}}. The
     linearized model's eigenvalues are those of its body-frame system.
+    .lyapunov (a Lyapunov: .verdict "stable" | "unstable" | "undecided", .certificate,
+    .energy_index 0 | 1 | 2, .stable_spin_intervals (rad/s), .superfast_spin (rad/s or None);
+    the KAM test is not built: an asymmetric body of index 2 that is linearly stable is
+    "undecided", certificate "none") and .wander (a Wander: .max_tilt rad or None, .method
+    "closed form" | "integrated", .horizon s or None) are result["lyapunov"] and result["wander"].
 
     Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".
     """
-    return Stability.from_json(_core.stability(body, spin))
+    return Stability.from_json(_core.stability(body, spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                                               phi_rate0=phi_rate0, horizon=horizon))
 
 
 def simulate(body: Body, model: ModelName = "nonlinear", *, spin: float = 0.0, theta0: float = 0.0,
@@ -162,7 +175,8 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
 
     Returns a StabilityMap, one array per CSV column, one element per grid point (row-major, the
     first key slowest): each key's values (float64), then "first-order", "body-fixed",
-    "linearized" and, when asked, "nonlinear" (bool: stable); result["linearized"],
+    "linearized", "lyapunov" (proven Lyapunov stable, SPEC section 7) and, when asked,
+    "nonlinear" (bool: stable); result["linearized"],
     .parameters, .verdicts, .shape (the grid's), .grid(NAME) (a column reshaped to the grid),
     .to_dict() (the dict of arrays).
 

@@ -22,7 +22,7 @@ import numpy.typing as npt
 from ._core import Body
 
 __all__ = [
-    "JsonResult", "ModelStability", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
+    "JsonResult", "ModelStability", "Lyapunov", "Wander", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
     "StabilityMap",
 ]
@@ -94,6 +94,52 @@ class ModelStability(JsonResult):
 
 
 @dataclass(frozen=True, eq=False)
+class Lyapunov(JsonResult):
+    """The real body's Lyapunov verdict at the spin asked (SPEC section 7; conservative body,
+    upright permanent rotation). The KAM test is not built: an asymmetric body of energy index 2
+    whose linearisation is stable is "undecided" with certificate "none"."""
+
+    verdict: str
+    """"stable" | "unstable" | "undecided"."""
+    certificate: str
+    """"energy-casimir" | "chetaev" | "critical-quartic" | "odd-index" | "linear-instability" | "none"."""
+    energy_index: int
+    """The number of negative stiffnesses among s1 = (C - A) w0^2 - m g R, s2 = (C - B) w0^2 - m g R (N m)."""
+    stable_spin_intervals: Tuple[Tuple[float, Optional[float]], ...]
+    """rad/s, the spins the verdict proves stable, as (lo, hi) pairs; hi None: and above."""
+    superfast_spin: Optional[float]
+    """rad/s, the smallest spin above which the energy index stays 0; None when it never does."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Lyapunov":
+        return cls(verdict=data["verdict"], certificate=data["certificate"], energy_index=data["energy_index"],
+                   stable_spin_intervals=tuple((lo, hi) for lo, hi in data["stable_spin_intervals"]),
+                   superfast_spin=data["superfast_spin"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Wander(JsonResult):
+    """How far the axis wanders in the full nonlinear motion from the state given."""
+
+    max_tilt: Optional[float]
+    """rad, the largest angle of the axis from the upward vertical; None if it could not be
+    computed (``note`` says why)."""
+    method: str
+    """"closed form" (A = B: the Lagrange top's cubic; or the upright rotation) | "integrated"."""
+    horizon: Optional[float]
+    """s, the integration's horizon; None for the closed form."""
+    note: str
+    """Why max_tilt is None, else empty."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Wander":
+        return cls(max_tilt=data["max_tilt"], method=data["method"], horizon=data["horizon"],
+                   note=data.get("note", ""), _data=data)
+
+
+@dataclass(frozen=True, eq=False)
 class Stability(JsonResult):
     """Linear stability of the first-order, body-fixed and linearized models at one spin:
     `heavytop stability --format json` (``to_dict()`` is json.loads of it)."""
@@ -104,6 +150,10 @@ class Stability(JsonResult):
     """rad/s, the spin w0 analysed."""
     models: Dict[str, ModelStability]
     """By SPEC name: "first-order", "body-fixed", "linearized"."""
+    lyapunov: Lyapunov
+    """The real body's verdict beyond the linearisation (SPEC section 7)."""
+    wander: Wander
+    """The largest tilt of the motion from the state given."""
     _data: Dict[str, Any] = field(repr=False)
 
     @classmethod
@@ -111,7 +161,9 @@ class Stability(JsonResult):
         b = data["body"]
         body = Body(b["A"], b["B"], b["C"], mass=b["mass"], length=b["length"], gravity=b["gravity"])
         return cls(body=body, spin=data["spin"],
-                   models={name: ModelStability.from_json(m) for name, m in data["models"].items()}, _data=data)
+                   models={name: ModelStability.from_json(m) for name, m in data["models"].items()},
+                   lyapunov=Lyapunov.from_json(data["lyapunov"]), wander=Wander.from_json(data["wander"]),
+                   _data=data)
 
 
 # ---- compare ---------------------------------------------------------------------------------
@@ -415,8 +467,8 @@ class StabilityMap(Mapping[str, npt.NDArray[Any]]):
 
     @property
     def verdicts(self) -> Dict[str, BoolArray]:
-        """Stable? at every grid point, by model: first-order, body-fixed, linearized and,
-        when asked, nonlinear."""
+        """Stable? at every grid point, by model: first-order, body-fixed, linearized, lyapunov
+        (proven Lyapunov stable, SPEC section 7) and, when asked, nonlinear."""
         return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= len(self._shape)}
 
     def grid(self, name: str) -> npt.NDArray[Any]:

@@ -8,6 +8,7 @@
 #include "heavytop/compare.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/io/formats.hpp"
+#include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
 #include "interrupt.hpp"
 
@@ -17,10 +18,15 @@ using namespace pybind11::literals;
 
 namespace {
 
-py::object stability(const Body& body, double spin) {
+py::object stability(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
+                     double phi_rate0, double horizon) {
   validate(body);
-  motion(spin, 0, 0, 0, 0);
-  return from_json(without_gil([&] { return io::stability_json(body, spin, analyse_stability(body, spin)); }));
+  const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
+  require_positive("horizon", horizon);
+  return from_json(without_gil([&] {
+    return io::stability_json(body, spin, analyse_stability(body, spin), analyse_lyapunov(body, spin),
+                              axis_wander(body, state, horizon));
+  }));
 }
 
 py::object compare(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
@@ -42,7 +48,8 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
 }  // namespace
 
 void bind_analyses(py::module_& m) {
-  m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a);
+  m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a, py::kw_only(), "theta0"_a = 0.0,
+        "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0);
   m.def("compare", &compare, docs::kCoreCompare, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
         "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "samples"_a, "rtol"_a = py::none(), "atol"_a = py::none());
 }

@@ -106,12 +106,14 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
     value_columns.push_back(column.mutable_data());
     out[py::str(k.key)] = column;
   }
-  const std::size_t model_count = kLinearModels.size() + (nonlinear ? 1 : 0);
+  // The CLI's columns: each linear model, `lyapunov` (proven Lyapunov stable), `nonlinear` if asked.
+  const std::size_t model_count = kLinearModels.size() + 1 + (nonlinear ? 1 : 0);
   std::vector<bool*> verdict_columns;
   for (std::size_t m = 0; m < model_count; ++m) {
     py::array_t<bool> column(static_cast<py::ssize_t>(total));
     verdict_columns.push_back(column.mutable_data());
-    out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m])) : "nonlinear")] = column;
+    out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m]))
+                : m == kLinearModels.size() ? "lyapunov" : "nonlinear")] = column;
   }
 
   without_gil([&] {
@@ -137,6 +139,7 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
         value_columns[k][i] = keys[k].data()[index / stride % keys[k].size()];
       }
       for (std::size_t m = 0; m < kLinearModels.size(); ++m) verdict_columns[m][i] = verdicts[i].linear[m];
+      verdict_columns[kLinearModels.size()][i] = verdicts[i].lyapunov;
       if (nonlinear) verdict_columns.back()[i] = verdicts[i].nonlinear.value_or(false);
     }
   });

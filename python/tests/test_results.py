@@ -141,9 +141,9 @@ def test_sweep_result_is_a_stability_map():
     ratios, spins = heavytop.grid_values(0.9, 1.1, 3), heavytop.grid_values(100, 300, 5)
     result = heavytop.sweep(TOP, {"B/A": ratios, "spin": spins}, spin=200.0)
     assert isinstance(result, heavytop.StabilityMap)
-    assert result.columns == ("B/A", "spin", "first-order", "body-fixed", "linearized") == tuple(result)
+    assert result.columns == ("B/A", "spin", "first-order", "body-fixed", "linearized", "lyapunov") == tuple(result)
     assert result.shape == (3, 5) and list(result.parameters) == ["B/A", "spin"]
-    assert list(result.verdicts) == ["first-order", "body-fixed", "linearized"]
+    assert list(result.verdicts) == ["first-order", "body-fixed", "linearized", "lyapunov"]
     assert result.to_dict().keys() == dict(result).keys()
     grid = result.grid("linearized")
     assert grid.shape == (3, 5) and (result.grid("spin")[1] == spins).all() and (result.grid("B/A")[:, 0] == ratios).all()
@@ -151,6 +151,7 @@ def test_sweep_result_is_a_stability_map():
         for j, spin in enumerate(spins):
             body = heavytop.Body(**dict(TOP.to_dict(), B=ratio * TOP.A))
             assert grid[i, j] == heavytop.stability(body, spin).models["linearized"].stable
+            assert result.grid("lyapunov")[i, j] == (heavytop.stability(body, spin).lyapunov.verdict == "stable")
 
 
 def test_grid_values_name_their_arguments():
@@ -174,3 +175,53 @@ def test_derivations_are_typed():
     check = heavytop.derive_check(1)
     assert check.all_as_expected is True and len(check.rows) == len(check["rows"])
     assert all(row.order == 1 and row.as_expected for row in check.rows)
+
+
+@pytest.mark.parametrize("name,motion", [
+    ("toy-top", dict(spin=200.0, theta0=0.05)),                      # A = B: the cubic's root
+    ("reference", dict(spin=1.2, theta0=1e-3, phi_rate0=0.01)),      # A != B: integrated
+    ("hanging", dict(spin=0.0, theta0=0.2)),
+    ("intermediate-C", dict(spin=3.0)),
+])
+def test_stability_lyapunov_and_wander_are_the_clis(name, motion):
+    body = BODIES[name]
+    result = heavytop.stability(body, motion["spin"], horizon=20.0,
+                                **{k: v for k, v in motion.items() if k != "spin"})
+    expected = cli_json("stability", *body_options(body), *motion_options(**motion), "--horizon", "20")
+    assert result == expected
+    assert list(expected)[-2:] == ["lyapunov", "wander"]
+    lyapunov, json = result.lyapunov, expected["lyapunov"]
+    assert isinstance(lyapunov, heavytop.results.Lyapunov)
+    assert (lyapunov.verdict, lyapunov.certificate, lyapunov.energy_index, lyapunov.superfast_spin) == (
+        json["verdict"], json["certificate"], json["energy_index"], json["superfast_spin"])
+    assert lyapunov.stable_spin_intervals == tuple(tuple(i) for i in json["stable_spin_intervals"])
+    wander = result.wander
+    assert isinstance(wander, heavytop.results.Wander)
+    assert (wander.max_tilt, wander.method, wander.horizon) == (
+        expected["wander"]["max_tilt"], expected["wander"]["method"], expected["wander"]["horizon"])
+    symmetric = body.A == body.B
+    assert wander.method == ("closed form" if symmetric or motion.get("theta0", 0) == 0 else "integrated")
+
+
+def test_lyapunov_values():
+    # The toy top: Chetaev above 133.344 rad/s, never superfast; its wander from 0.05 rad is
+    # acos(u_min) of the Lagrange cubic, within the integrated maximum.
+    top = heavytop.example_toy_top()
+    result = heavytop.stability(top, 200.0, theta0=0.05)
+    assert (result.lyapunov.verdict, result.lyapunov.certificate) == ("stable", "chetaev")
+    assert result.lyapunov.superfast_spin is None
+    ((lo, hi),) = result.lyapunov.stable_spin_intervals
+    assert abs(lo - 2 * math.sqrt(top.A * top.mass * top.gravity * top.length) / top.C) < 1e-12 * lo
+    assert hi is None and abs(lo - 133.344) < 5e-4
+    assert 0.05 < result.wander.max_tilt < 0.1 and result.wander.horizon is None
+    # E3's body: index 1 between 1 and sqrt 2, superfast above.
+    body = heavytop.Body(1.0, 1.5, 2.0, mass=1.0, length=1.0, gravity=1.0)
+    mid = heavytop.stability(body, 1.2).lyapunov
+    assert (mid.verdict, mid.certificate, mid.energy_index) == ("unstable", "odd-index", 1)
+    assert heavytop.stability(body, 1.5).lyapunov.superfast_spin == math.sqrt(2.0)
+    # Index 2, linearly stable, A != B: undecided (the KAM test is not built).
+    hanging = heavytop.Body(1.0, 1.2, 0.7, mass=1.0, length=-1.0, gravity=1.0)
+    undecided = heavytop.stability(hanging, 2.0).lyapunov
+    assert (undecided.verdict, undecided.certificate, undecided.energy_index) == ("undecided", "none", 2)
+    with pytest.raises(heavytop.InvalidInput, match="horizon"):
+        heavytop.stability(top, 200.0, horizon=0.0)

@@ -25,7 +25,7 @@ def cli_sweep(body, motion, varies, *extra):
 def assert_same(result, expected):
     assert list(result) == list(expected)
     for name, column in expected.items():
-        if name in LINEAR + ["nonlinear"]:
+        if name in LINEAR + ["lyapunov", "nonlinear"]:
             assert result[name].dtype == np.bool_, name
             np.testing.assert_array_equal(result[name], column.astype(bool), err_msg=name)
         else:
@@ -138,7 +138,10 @@ def test_a_10000_point_sweep_is_as_fast_as_the_cli():
     cli, py = min(cli_times), min(py_times)
     print(f"\n10000-point sweep, best of 3: CLI {cli:.3f} s, Python {py:.3f} s, ratio {py / cli:.2f}")
     assert len(result["nonlinear"]) == 10000
+    header = out.stdout.decode().splitlines()[0].split(",")
+    assert header == ["B/A", "spin", *LINEAR, "lyapunov", "nonlinear"], header
     expected = np.loadtxt(io.StringIO(out.stdout.decode()), delimiter=",", skiprows=1)
-    np.testing.assert_array_equal(result["nonlinear"], expected[:, 5].astype(bool))
+    np.testing.assert_array_equal(result["nonlinear"], expected[:, 6].astype(bool))
+    np.testing.assert_array_equal(result["lyapunov"], expected[:, 5].astype(bool))
     assert cli > 0.2, f"the CLI took {cli:.3f} s: too quick for the comparison to mean anything"
     assert py <= 1.2 * cli, f"Python {py:.3f} s > 1.2 x CLI {cli:.3f} s"

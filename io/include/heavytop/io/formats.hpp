@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "heavytop/compare.hpp"
+#include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
 #include "heavytop/sweep.hpp"
@@ -19,6 +20,15 @@ namespace heavytop::io {
 std::string intervals_text(const std::vector<SpinInterval>& intervals);
 std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models);
 std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models);
+/// `heavytop stability` with the real body's side (SPEC section 7): the JSON adds, beside
+/// "models", "lyapunov" {"verdict", "certificate", "energy_index", "stable_spin_intervals"
+/// (rad/s), "superfast_spin" (rad/s or null)} and "wander" {"max_tilt" (rad or null), "method"
+/// ("closed form" | "integrated"), "horizon" (s or null), and "note" when max_tilt is null};
+/// the text adds one line per question after the linear models' table, which is unchanged.
+std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models,
+                           const LyapunovStability& lyapunov, const Wander& wander);
+std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models,
+                           const LyapunovStability& lyapunov, const Wander& wander);
 
 /// A number as JSON/CSV prints it: the shortest form that reads back to the same double.
 std::string number(double value);
@@ -38,8 +48,9 @@ std::string comparison_json(const Comparison& comparison);
 std::string comparison_csv(const Comparison& comparison);
 std::string comparison_text(const Comparison& comparison, double t_end);
 
-/// The sweep's CSV: the header (varied keys, a column per linear model, `nonlinear` if asked)
-/// and the rows of grid points begin, begin + 1, ... with their verdicts.
+/// The sweep's CSV: the header (varied keys, a column per linear model, `lyapunov` (1: proven
+/// Lyapunov stable, SPEC section 7), `nonlinear` if asked) and the rows of grid points begin,
+/// begin + 1, ... with their verdicts.
 std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear);
 std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin,
                            const std::vector<SweepVerdict>& verdicts);
