@@ -35,12 +35,13 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import compare, derive, derive_check, derive_rotations, simulate, stability, sweep
 from . import results
-from .results import (CheckRow, Comparison, Derivation, DerivationCheck, ModelComparison, ModelStability,
-                      NonlinearReference, Rotations, SimulationSummary, Stability, StabilityMap, Trajectory)
+from .results import (CheckRow, Comparison, Derivation, DerivationCheck, Lyapunov, ModelComparison, ModelStability,
+                      NonlinearReference, Rotations, SimulationSummary, Stability, StabilityMap, Trajectory, Wander)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
     "stability", "simulate", "compare", "sweep", "grid_values", "derive", "derive_rotations", "derive_check",
     "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
-    "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow",
+    "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
+    "Wander",
 ]
