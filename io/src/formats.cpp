@@ -46,9 +46,6 @@ Json stability_object(const Body& body, double spin, const std::vector<ModelStab
 
 }  // namespace
 
-std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models) {
-  return stability_object(body, spin, models).dump(2) + "\n";
-}
 
 namespace {
 

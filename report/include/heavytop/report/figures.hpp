@@ -3,6 +3,7 @@
 /// Figures in PNG and SVG, drawn by gnuplot (a maintained plotting program from Debian's
 /// packages; no plot rendering here): this file only writes the data and the gnuplot script.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& compar
 /// Stable spins against B/A for the three linear models, with nonlinear verdicts on a grid
 /// and the body itself marked: erratum E3 at a glance.
 Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state);
+/// How far the axis wanders: the largest tilt against the spin for a start delta = 1e-3 and
+/// 1e-2 rad off vertical (log scale), the exact linearisation's critical spin marked: the
+/// sqrt(2 delta) plateau at the boundary of (9) and the jump below it (erratum E2). Exact
+/// (the Lagrange top's cubic) for A = B, integrated for A != B.
+Figure plot_wander(const std::string& dir, const Body& body, std::optional<double> critical_spin);
 /// A two-parameter sweep's map as a heat map: where (4) and the linearisation agree or not.
 Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
                       const std::vector<SweepVerdict>& verdicts);
