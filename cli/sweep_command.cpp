@@ -31,7 +31,7 @@ struct SweepSettings {
 std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o) {
   const Body& b = in.body();
   const InitialState& s = in.state();
-  std::string f = fmt::format("heavytop-sweep-v2 body {} {} {} {} {} {} state {} {} {} {} {}", b.A, b.B, b.C, b.mass,
+  std::string f = fmt::format("heavytop-sweep-v3 body {} {} {} {} {} {} state {} {} {} {} {}", b.A, b.B, b.C, b.mass,
                               b.gravity, b.length, s.spin, s.theta0, s.phi0, s.theta_rate0, s.phi_rate0);
   for (const auto& a : axes) f += fmt::format(" vary {}={}:{}:{}", a.key, a.start, a.stop, a.count);
   if (o.nonlinear)

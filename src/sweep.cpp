@@ -180,7 +180,9 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
           SweepVerdict& v = out[i];
           for (std::size_t m = 0; m < kLinearModels.size(); ++m)
             v.linear[m] = linear_stability(linear_model(kLinearModels[m], body), state.spin).stable;
-          v.lyapunov = lyapunov_stability(body, state.spin).verdict == LyapunovVerdictKind::Stable;
+          const LyapunovVerdict lyapunov = lyapunov_stability(body, state.spin);
+          v.lyapunov = lyapunov.verdict == LyapunovVerdictKind::Stable;
+          v.lyapunov_certificate = lyapunov.certificate;
           if (options.nonlinear)
             v.nonlinear = max_tilt(body, state, options.horizon, options.max_tilt, options.integrator) <= options.max_tilt;
         } catch (...) {

@@ -11,7 +11,7 @@ check "sweep exit 0" test $? -eq 0
 check "sweep rows" python3 - map.csv <<'PY'
 import csv, sys
 rows = list(csv.reader(open(sys.argv[1])))
-assert rows[0] == ["B/A", "spin", "first-order", "body-fixed", "linearized", "lyapunov"], rows[0]
+assert rows[0] == ["B/A", "spin", "first-order", "body-fixed", "linearized", "lyapunov", "lyapunov_certificate"], rows[0]
 assert len(rows) == 1 + 200
 grid = [(float(r[0]), float(r[1])) for r in rows[1:]]
 assert grid == sorted(grid) and len(set(grid)) == 200
@@ -52,12 +52,14 @@ check "resume said so" grep -q "resuming" resume.log
 check "resumed rows equal an uninterrupted run" cmp -s whole.csv resumed.csv
 check "nonlinear column" python3 -c '
 import csv; rows = list(csv.reader(open("whole.csv")))
-assert rows[0][-1] == "nonlinear" and len(rows) == 49
+assert rows[0][-1] == "nonlinear" and rows[0][-2] == "lyapunov_certificate" and len(rows) == 49
 v = {float(r[0]): r for r in rows[1:]}
+# The certificate names the proof: odd index (unstable) between 1 and sqrt 2, energy-Casimir above.
+assert all(r[5] == ("energy-casimir" if s > 2 ** 0.5 else "odd-index") for s, r in v.items() if 1.0 < s < 1.414 or s > 1.415)
 lo = [r for s, r in v.items() if s < 1.40]; hi = [r for s, r in v.items() if s > 1.45]
 assert all(r[3] == "0" for r in lo) and all(r[3] == "1" for r in hi)   # linearized: sqrt 2
 assert rows[0][4] == "lyapunov" and all(r[4] == ("1" if s > 2 ** 0.5 else "0") for s, r in v.items())  # superfast above sqrt 2
-assert all(r[5] == "0" for r in lo[:3]) and all(r[5] == "1" for r in hi)  # the body falls below it'
+assert all(r[6] == "0" for r in lo[:3]) and all(r[6] == "1" for r in hi)  # the body falls below it'
 # Other arguments do not resume a partial file: it starts over.
 cp resumed.csv other.csv.partial; echo "made with other arguments" > other.csv.partial.args
 "$H" sweep "${common[@]}" --vary spin=1.2:2.2:5 --output other.csv >/dev/null 2>&1

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "heavytop/body.hpp"
+#include "heavytop/lyapunov.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/state.hpp"
 
@@ -71,6 +72,8 @@ struct SweepVerdict {
   std::array<bool, 3> linear{};   ///< stable? first-order, body-fixed, linearized (kLinearModels order)
   /// Proven Lyapunov stable (lyapunov_stability's verdict is Stable; undecided counts as false).
   bool lyapunov = false;
+  /// The certificate behind that verdict (SPEC section 7's names; `none` when undecided).
+  LyapunovCertificate lyapunov_certificate = LyapunovCertificate::None;
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
 };
 

@@ -133,7 +133,8 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
   for (const auto& [section_key, node] : table) {
     const std::string section(section_key.str());
     const bool known = section == "body" || section == "motion" || sections.count(section);
-    if (!known) throw InvalidInput(printable(section), "unknown section in " + printable(source));
+    if (!known)
+      throw InvalidInput(section.empty() ? "\"\"" : printable(section), "unknown section in " + printable(source));
     const auto* sub = node.as_table();
     if (!sub) throw InvalidInput(section, "must be a [section] table");
     config.has_body = config.has_body || section == "body";

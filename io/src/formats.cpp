@@ -272,7 +272,7 @@ std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear)
   std::string h;
   for (const auto& a : axes) h += a.key + ",";
   for (std::size_t m = 0; m < kLinearModels.size(); ++m) h += fmt::format("{}{}", m ? "," : "", name(kLinearModels[m]));
-  h += ",lyapunov";
+  h += ",lyapunov,lyapunov_certificate";
   if (nonlinear) h += ",nonlinear";
   return h + "\n";
 }
@@ -282,8 +282,8 @@ std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin
   for (std::size_t r = 0; r < verdicts.size(); ++r) {
     for (double value : grid_values(axes, begin + r)) fmt::format_to(std::back_inserter(out), "{},", value);
     const auto& v = verdicts[r];
-    fmt::format_to(std::back_inserter(out), "{},{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]),
-                   int(v.lyapunov));
+    fmt::format_to(std::back_inserter(out), "{},{},{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]),
+                   int(v.lyapunov), name(v.lyapunov_certificate));
     if (v.nonlinear) fmt::format_to(std::back_inserter(out), ",{}", int(*v.nonlinear));
     out.push_back('\n');
   }

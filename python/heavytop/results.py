@@ -441,7 +441,8 @@ class Trajectory(Mapping[str, FloatArray]):
 
 class StabilityMap(Mapping[str, npt.NDArray[Any]]):
     """Each model's verdict over a grid, column by column as `heavytop sweep` prints it: the
-    varied values (float64), then a bool column per model, one element per grid point
+    varied values (float64), then a bool column per model (and `lyapunov_certificate`, the
+    certificate behind each Lyapunov verdict, as strings), one element per grid point
     (row-major, the first key slowest). ``to_dict()`` is the dict of every column."""
 
     __slots__ = ("_columns", "_shape")
@@ -469,7 +470,13 @@ class StabilityMap(Mapping[str, npt.NDArray[Any]]):
     def verdicts(self) -> Dict[str, BoolArray]:
         """Stable? at every grid point, by model: first-order, body-fixed, linearized, lyapunov
         (proven Lyapunov stable, SPEC section 7) and, when asked, nonlinear."""
-        return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= len(self._shape)}
+        return {name: column for i, (name, column) in enumerate(self._columns.items())
+                if i >= len(self._shape) and name != "lyapunov_certificate"}
+
+    @property
+    def certificates(self) -> npt.NDArray[np.str_]:
+        """The certificate behind each point's Lyapunov verdict (SPEC section 7's names)."""
+        return self._columns["lyapunov_certificate"]
 
     def grid(self, name: str) -> npt.NDArray[Any]:
         """Column `name` as an array of the grid's shape (a view)."""

@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "docs.hpp"
 #include "heavytop/linear_models.hpp"
+#include "heavytop/lyapunov.hpp"
 #include "heavytop/sweep.hpp"
 #include "interrupt.hpp"
 
@@ -114,7 +115,9 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
     verdict_columns.push_back(column.mutable_data());
     out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m]))
                 : m == kLinearModels.size() ? "lyapunov" : "nonlinear")] = column;
+    if (m == kLinearModels.size()) out["lyapunov_certificate"] = py::none();  // its place; filled below
   }
+  std::vector<LyapunovCertificate> certificates(total);
 
   without_gil([&] {
     std::vector<SweepVerdict> verdicts(total);
@@ -132,17 +135,21 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
           verdicts[i] = sweep_verdicts(body, state, point_axes(keys, i), one_thread, 0, 1)[0];
       });
     }
+    std::vector<std::size_t> counts;
+    for (const auto& k : keys) counts.push_back(k.size());
     for (std::size_t i = 0; i < total; ++i) {
-      for (std::size_t k = 0, index = i; k < keys.size(); ++k) {
-        std::size_t stride = 1;
-        for (std::size_t j = k + 1; j < keys.size(); ++j) stride *= keys[j].size();
-        value_columns[k][i] = keys[k].data()[index / stride % keys[k].size()];
-      }
+      const std::vector<std::size_t> at = grid_indices(counts, i);
+      for (std::size_t k = 0; k < keys.size(); ++k) value_columns[k][i] = keys[k].data()[at[k]];
       for (std::size_t m = 0; m < kLinearModels.size(); ++m) verdict_columns[m][i] = verdicts[i].linear[m];
       verdict_columns[kLinearModels.size()][i] = verdicts[i].lyapunov;
+      certificates[i] = verdicts[i].lyapunov_certificate;
       if (nonlinear) verdict_columns.back()[i] = verdicts[i].nonlinear.value_or(false);
     }
   });
+  // The certificates' names, as a NumPy array of strings (the CLI's column).
+  py::list names;
+  for (LyapunovCertificate c : certificates) names.append(py::str(std::string(name(c))));
+  out["lyapunov_certificate"] = py::module_::import("numpy").attr("array")(names, "dtype"_a = "U");
   return out;
 }
 

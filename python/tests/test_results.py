@@ -141,7 +141,8 @@ def test_sweep_result_is_a_stability_map():
     ratios, spins = heavytop.grid_values(0.9, 1.1, 3), heavytop.grid_values(100, 300, 5)
     result = heavytop.sweep(TOP, {"B/A": ratios, "spin": spins}, spin=200.0)
     assert isinstance(result, heavytop.StabilityMap)
-    assert result.columns == ("B/A", "spin", "first-order", "body-fixed", "linearized", "lyapunov") == tuple(result)
+    assert result.columns == ("B/A", "spin", "first-order", "body-fixed", "linearized", "lyapunov",
+                              "lyapunov_certificate") == tuple(result)
     assert result.shape == (3, 5) and list(result.parameters) == ["B/A", "spin"]
     assert list(result.verdicts) == ["first-order", "body-fixed", "linearized", "lyapunov"]
     assert result.to_dict().keys() == dict(result).keys()
@@ -152,6 +153,7 @@ def test_sweep_result_is_a_stability_map():
             body = heavytop.Body(**dict(TOP.to_dict(), B=ratio * TOP.A))
             assert grid[i, j] == heavytop.stability(body, spin).models["linearized"].stable
             assert result.grid("lyapunov")[i, j] == (heavytop.stability(body, spin).lyapunov.verdict == "stable")
+            assert result.certificates.reshape(3, 5)[i, j] == heavytop.stability(body, spin).lyapunov.certificate
 
 
 def test_grid_values_name_their_arguments():

@@ -17,15 +17,20 @@ def cli_sweep(body, motion, varies, *extra):
     for v in varies:
         args += ["--vary", v]
     text = run_cli(*args, *extra).stdout
-    header = text.splitlines()[0].split(",")
-    data = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
-    return {name: data[:, i] for i, name in enumerate(header)}
+    lines = text.splitlines()
+    header = lines[0].split(",")
+    cells = [line.split(",") for line in lines[1:]]
+    return {name: np.array([row[i] for row in cells], dtype=str) if name == "lyapunov_certificate"
+            else np.array([float(row[i]) for row in cells]) for i, name in enumerate(header)}
 
 
 def assert_same(result, expected):
     assert list(result) == list(expected)
     for name, column in expected.items():
-        if name in LINEAR + ["lyapunov", "nonlinear"]:
+        if name == "lyapunov_certificate":
+            assert result[name].dtype.kind == "U", name
+            np.testing.assert_array_equal(result[name], column, err_msg=name)
+        elif name in LINEAR + ["lyapunov", "nonlinear"]:
             assert result[name].dtype == np.bool_, name
             np.testing.assert_array_equal(result[name], column.astype(bool), err_msg=name)
         else:
@@ -139,8 +144,8 @@ def test_a_10000_point_sweep_is_as_fast_as_the_cli():
     print(f"\n10000-point sweep, best of 3: CLI {cli:.3f} s, Python {py:.3f} s, ratio {py / cli:.2f}")
     assert len(result["nonlinear"]) == 10000
     header = out.stdout.decode().splitlines()[0].split(",")
-    assert header == ["B/A", "spin", *LINEAR, "lyapunov", "nonlinear"], header
-    expected = np.loadtxt(io.StringIO(out.stdout.decode()), delimiter=",", skiprows=1)
+    assert header == ["B/A", "spin", *LINEAR, "lyapunov", "lyapunov_certificate", "nonlinear"], header
+    expected = np.loadtxt(io.StringIO(out.stdout.decode()), delimiter=",", skiprows=1, usecols=(0, 1, 2, 3, 4, 5, 7))
     np.testing.assert_array_equal(result["nonlinear"], expected[:, 6].astype(bool))
     np.testing.assert_array_equal(result["lyapunov"], expected[:, 5].astype(bool))
     assert cli > 0.2, f"the CLI took {cli:.3f} s: too quick for the comparison to mean anything"

@@ -48,7 +48,8 @@ std::string comparison_csv(const Comparison& comparison);
 std::string comparison_text(const Comparison& comparison, double t_end);
 
 /// The sweep's CSV: the header (varied keys, a column per linear model, `lyapunov` (1: proven
-/// Lyapunov stable, SPEC section 7), `nonlinear` if asked) and the rows of grid points begin,
+/// Lyapunov stable, SPEC section 7) and `lyapunov_certificate` (its certificate's name),
+/// `nonlinear` if asked) and the rows of grid points begin,
 /// begin + 1, ... with their verdicts.
 std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear);
 std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin,
