@@ -17,7 +17,7 @@ using Action = std::function<void()>;
 
 Action add_stability_command(CLI::App& app);
 Action add_simulate_command(CLI::App& app);
-Action add_derive_command(CLI::App& app);
+Action add_derive_command(CLI::App& app);  ///< in heavytop-derive only (derive_main.cpp)
 Action add_compare_command(CLI::App& app);
 Action add_sweep_command(CLI::App& app);
 Action add_report_command(CLI::App& app);

@@ -1,13 +1,22 @@
 #include "common.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <new>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <chrono>
 #include <iostream>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
+extern char** environ;
+
 namespace heavytop::cli {
+namespace fs = std::filesystem;
 namespace {
 
 struct KeyHelp {
@@ -102,6 +111,57 @@ void ProgressBar::update(double done) {
 
 ProgressBar::~ProgressBar() {
   if (shown_) std::cerr << "\n";
+}
+
+int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << fmt::format("heavytop: error: {}\n", e.what());
+    return 2;
+  } catch (const InvalidInput& e) {
+    std::cerr << fmt::format("heavytop: error: {}: {}\n", flag_of(e.key()), e.rule());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "heavytop: error: out of memory (fewer --samples, or --format csv, which streams)\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {  // its what() is the library's wording
+    std::cerr << fmt::format("heavytop: error: cannot use '{}': {}\n", e.path1().string(), e.code().message());
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << fmt::format("heavytop: error: {}\n", e.what());
+    return 1;
+  }
+}
+
+int run_derive(int argc, char** argv, bool replace_process) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const std::string program = ((ec ? fs::path(argv[0]) : self).parent_path() / "heavytop-derive").string();
+  if (::access(program.c_str(), X_OK) != 0) {
+    std::cerr << "heavytop: error: derive: the program heavytop-derive is not beside heavytop (built without "
+                 "HEAVYTOP_BUILD_SYMBOLIC?)\n";
+    return 1;
+  }
+  std::vector<char*> args(argv, argv + argc);
+  args.push_back(nullptr);
+  if (replace_process) {
+    ::execv(program.c_str(), args.data());  // returns only on failure
+  } else {
+    pid_t pid = 0;
+    if (::posix_spawn(&pid, program.c_str(), nullptr, nullptr, args.data(), environ) == 0) {
+      int status = 0;
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    }
+  }
+  std::cerr << fmt::format("heavytop: error: derive: cannot run '{}': {}\n", program, std::strerror(errno));
+  return 1;
 }
 
 }  // namespace heavytop::cli

@@ -4,6 +4,7 @@
 // line's flags. Commands translate flags to the library's options, call it, and hand the
 // result to heavytop_io; nothing here computes or formats a result.
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -26,6 +27,16 @@ std::string flag_of(const std::string& field);
 
 /// Writes `content` to --output ("" or "-": stdout), as io::write_output with key "--output".
 inline void write_output(const std::string& path, const std::string& content) { io::write_output(path, content, "--output"); }
+
+/// Runs `body` and turns what it throws into SPEC section 1's exit status and one line on
+/// stderr: 2 for bad input (a parse error, InvalidInput with the field spelled as a flag), 1
+/// for a failure (numerical, out of memory, a file), CLI11's for --help.
+int run_reporting_errors(CLI::App& app, const std::function<int()>& body);
+
+/// `heavytop derive ...`: runs the program heavytop-derive beside this one with the same
+/// arguments (replacing this process when `replace_process`, else as a child whose exit
+/// status it returns). Only that program links the computer algebra.
+int run_derive(int argc, char** argv, bool replace_process);
 
 /// The body and motion as given on the command line and in --config, merged.
 class Inputs {

@@ -1,4 +1,5 @@
-// heavytop derive: the paper's models derived symbolically (GiNaC), as text, LaTeX or JSON.
+// heavytop derive: the paper's models derived symbolically (GiNaC), as text, LaTeX or JSON;
+// built into the program heavytop-derive (derive_main.cpp), which `heavytop derive` runs.
 #include <memory>
 #include <sstream>
 #include <string>
@@ -9,21 +10,13 @@
 #include "commands.hpp"
 #include "common.hpp"
 
-#ifdef HEAVYTOP_HAVE_SYMBOLIC
 #include "heavytop/symbolic/derive.hpp"
 #include "heavytop/symbolic/json.hpp"
 #include "heavytop/symbolic/print.hpp"
 #include "heavytop/symbolic/symbols.hpp"
-#endif
 
 namespace heavytop::cli {
 
-#ifndef HEAVYTOP_HAVE_SYMBOLIC
-Action add_derive_command(CLI::App& app) {
-  app.add_subcommand("derive", "Derive the paper's models symbolically (not built: needs GiNaC)");
-  return [] { throw Failure("derive: heavytop was built without HEAVYTOP_BUILD_SYMBOLIC"); };
-}
-#else
 
 namespace {
 
@@ -407,7 +400,5 @@ Action add_derive_command(CLI::App& app) {
     write_output(o->output, content);
   };
 }
-
-#endif  // HEAVYTOP_HAVE_SYMBOLIC
 
 }  // namespace heavytop::cli

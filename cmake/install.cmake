@@ -3,7 +3,7 @@
 #   lib/libheavytop_core.a, lib/libheavytop_symbolic.a        the static libraries
 #   lib/cmake/heavytop/                                        find_package(heavytop)
 #   lib/pkgconfig/heavytop.pc, heavytop-symbolic.pc            pkg-config
-#   bin/heavytop                                               the command, when built
+#   bin/heavytop, bin/heavytop-derive                           the command, when built
 # Every destination is relative to the prefix given at install time (cmake --install --prefix),
 # and the generated files find that prefix from their own location: the tree is relocatable.
 include(CMakePackageConfigHelpers)
@@ -35,6 +35,9 @@ endif()
 
 if(TARGET heavytop)
   install(TARGETS heavytop RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT heavytop_runtime)
+endif()
+if(TARGET heavytop-derive)  # beside heavytop, which runs it for `heavytop derive`
+  install(TARGETS heavytop-derive RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT heavytop_runtime)
 endif()
 
 # The CMake package: heavytopConfig.cmake (finds the dependencies, then the targets).
