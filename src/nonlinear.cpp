@@ -429,9 +429,6 @@ ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState&
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const NonlinearOptions& options,
                               NonlinearSummary* summary) {
-  validate(body);
-  validate(initial);
-  validate(options);
   validate_times(times);
   Trajectory out;
   detail::stream_nonlinear(body, initial, gather(times, out), options, summary);
