@@ -371,12 +371,35 @@ def _column(name: str, doc: str) -> property:
     return property(get, doc=doc)
 
 
-class Trajectory(Mapping[str, FloatArray]):
+class _Columns(Mapping[str, npt.NDArray[Any]]):
+    """Named NumPy columns in the CSV's order, as a read-only Mapping (the arrays themselves)."""
+
+    __slots__ = ("_columns",)
+    _columns: Dict[str, npt.NDArray[Any]]
+
+    def __getitem__(self, name: str) -> npt.NDArray[Any]:
+        return self._columns[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._columns
+
+    def to_dict(self) -> Dict[str, npt.NDArray[Any]]:
+        """Every column by name, in the CSV's order (the arrays themselves, not copies)."""
+        return dict(self._columns)
+
+
+class Trajectory(_Columns):
     """The motion of one model, column by column as `heavytop simulate --format csv` prints it:
     float64 NumPy arrays, one element per sample. ``result["theta"]`` and ``result.theta``
     are the same array; ``to_dict()`` is the dict of every column, in the CSV's order."""
 
-    __slots__ = ("_columns", "_model", "_summary")
+    __slots__ = ("_model", "_summary")
 
     def __init__(self, columns: Dict[str, FloatArray], summary: SimulationSummary) -> None:
         self._columns = dict(columns)
@@ -416,22 +439,6 @@ class Trajectory(Mapping[str, FloatArray]):
         """The columns after the first five (the nonlinear model's conserved quantities)."""
         return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= 5}
 
-    def __getitem__(self, name: str) -> FloatArray:
-        return self._columns[name]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._columns)
-
-    def __len__(self) -> int:
-        return len(self._columns)
-
-    def __contains__(self, name: object) -> bool:
-        return name in self._columns
-
-    def to_dict(self) -> Dict[str, FloatArray]:
-        """Every column by name, in the CSV's order (the arrays themselves, not copies)."""
-        return dict(self._columns)
-
     def __repr__(self) -> str:
         return (f"Trajectory(model={self._model!r}, samples={len(self._columns['t'])}, "
                 f"columns={self.columns!r}, summary={self._summary.report!r})")
@@ -439,13 +446,13 @@ class Trajectory(Mapping[str, FloatArray]):
 
 # ---- sweep -----------------------------------------------------------------------------------
 
-class StabilityMap(Mapping[str, npt.NDArray[Any]]):
+class StabilityMap(_Columns):
     """Each model's verdict over a grid, column by column as `heavytop sweep` prints it: the
     varied values (float64), then a bool column per model (and `lyapunov_certificate`, the
     certificate behind each Lyapunov verdict, as strings), one element per grid point
     (row-major, the first key slowest). ``to_dict()`` is the dict of every column."""
 
-    __slots__ = ("_columns", "_shape")
+    __slots__ = ("_shape",)
 
     def __init__(self, columns: Dict[str, Any], shape: Tuple[int, ...]) -> None:
         self._columns = dict(columns)
@@ -481,22 +488,6 @@ class StabilityMap(Mapping[str, npt.NDArray[Any]]):
     def grid(self, name: str) -> npt.NDArray[Any]:
         """Column `name` as an array of the grid's shape (a view)."""
         return self._columns[name].reshape(self._shape)
-
-    def __getitem__(self, name: str) -> npt.NDArray[Any]:
-        return self._columns[name]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._columns)
-
-    def __len__(self) -> int:
-        return len(self._columns)
-
-    def __contains__(self, name: object) -> bool:
-        return name in self._columns
-
-    def to_dict(self) -> Dict[str, npt.NDArray[Any]]:
-        """Every column by name, in the CSV's order (the arrays themselves, not copies)."""
-        return dict(self._columns)
 
     def __repr__(self) -> str:
         return f"StabilityMap(shape={self._shape!r}, columns={self.columns!r})"

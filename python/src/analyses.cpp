@@ -3,7 +3,7 @@
 
 #include <pybind11/stl.h>
 
-#include "common.hpp"
+#include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/compare.hpp"
 #include "heavytop/simulate.hpp"

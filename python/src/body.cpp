@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
-#include "common.hpp"
+#include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/body.hpp"
 #include "heavytop/state.hpp"

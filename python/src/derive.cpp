@@ -7,7 +7,7 @@
 
 #include <pybind11/stl.h>
 
-#include "common.hpp"
+#include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/body.hpp"
 

@@ -1,7 +1,7 @@
 // heavytop._core: the compiled half of the Python package heavytop, thin pybind11 bindings
 // over heavytop_core, heavytop_io and heavytop_symbolic (one file per topic). The package's
 // Python half (heavytop/__init__.py, results.py) turns what these return into typed results.
-#include "common.hpp"
+#include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/body.hpp"
 

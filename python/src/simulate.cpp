@@ -5,7 +5,7 @@
 
 #include <pybind11/stl.h>
 
-#include "common.hpp"
+#include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/simulate.hpp"

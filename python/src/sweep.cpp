@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
-#include "common.hpp"
+#include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/linear_models.hpp"
 #include "heavytop/lyapunov.hpp"
