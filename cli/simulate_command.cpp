@@ -128,16 +128,14 @@ Action add_simulate_command(CLI::App& app) {
     const SampleGrid grid{o->t_end, static_cast<std::size_t>(o->samples)};
     // Open the output first: a path that cannot be written is bad input, found before any work.
     io::OutputStream out(inputs->output(), "--output");
-    NonlinearSummary adaptive;
     SimulationSummary summary;
-    if (json) {
-      Trajectory all;
-      summary = simulate_streaming(*model, inputs->body(), inputs->state(), grid, o->options,
-                                   [&](const Trajectory& part) { all.size() ? all.append(part) : void(all = part); },
-                                   grid.count, &adaptive);
+    if (json) {  // the whole trajectory in memory (at most kMaxJsonSamples)
+      const Simulation run = simulate(*model, inputs->body(), inputs->state(), sample_times(grid.t_end, grid.count),
+                                      o->options);
+      summary = run.summary;
       if (!summary.ok()) throw Failure(summary.message);
-      const bool with_summary = nonlinear && *integrator == Integrator::Adaptive;
-      out.write(io::trajectory_json(*model, inputs->body(), inputs->state(), all, with_summary ? &adaptive : nullptr));
+      out.write(io::trajectory_json(*model, inputs->body(), inputs->state(), run.trajectory,
+                                    run.adaptive ? &*run.adaptive : nullptr));
     } else {
       // CSV rows as they are computed: memory stays flat in the number of samples.
       bool header = false;

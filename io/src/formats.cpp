@@ -89,7 +89,10 @@ std::string intervals_text(const std::vector<SpinInterval>& intervals) {
   return text;
 }
 
-std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models) {
+namespace {
+
+/// The linear models' table and the notes on the paper's errors (the first half of `stability`).
+std::string linear_stability_text(const Body& body, double spin, const std::vector<ModelStability>& models) {
   std::ostringstream out;
   out << fmt::format("Body: A = {:g}, B = {:g}, C = {:g} kg m^2; m g R = {:g} N m ({})\n", body.A,
                      body.B, body.C, body.mgR(),
@@ -128,10 +131,12 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   return out.str();
 }
 
+}  // namespace
+
 std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models,
                            const LyapunovStability& lyapunov, const Wander& wander) {
   std::ostringstream out;
-  out << stability_text(body, spin, models);
+  out << linear_stability_text(body, spin, models);
   const LyapunovVerdict& v = lyapunov.verdict;
   out << "\nThe real body (nonlinear, conservative), beyond the linearisation:\n";
   out << fmt::format("  linearly stable (the exact linearisation): {}\n",

@@ -18,7 +18,6 @@ namespace heavytop::io {
 /// Stable spins for people (rad/s): "[1.2, 3.4), above 5.6", "from 5.6" (5.6 itself stable),
 /// "every spin", "every spin > 0" or "none"; brackets say whether an end is included.
 std::string intervals_text(const std::vector<SpinInterval>& intervals);
-std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models);
 /// `heavytop stability` with the real body's side (SPEC section 7): the JSON adds, beside
 /// "models", "lyapunov" {"verdict", "certificate", "energy_index", "stable_spin_intervals"
 /// (rad/s), "superfast_spin" (rad/s or null)} and "wander" {"max_tilt" (rad or null), "method"
