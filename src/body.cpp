@@ -53,6 +53,7 @@ void validate(const Body& body) {
                    "a real body has B + C >= A (triangle inequality of the moments of inertia)");
   require_triangle(body.C, body.A, body.B, "body.B",
                    "a real body has C + A >= B (triangle inequality of the moments of inertia)");
+  validate(body.damping);
 }
 
 Body example_toy_top() {

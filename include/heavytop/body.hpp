@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "heavytop/damping.hpp"
+
 namespace heavytop {
 
 /// Bad user input. Names the offending key (as spelled in the configuration file,
@@ -30,6 +32,7 @@ struct Body {
   double gravity = 9.81; ///< m/s^2, g (>= 0), acting along -zeta of the fixed frame
   double length = 0.0;   ///< m, R: signed distance from O to the centre of mass along body +z
                          ///< (> 0: a top on its tip, < 0: a hanging body)
+  Damping damping;       ///< the torques of SPEC section 6 (default none: conservative)
 
   /// N m, the gravitational moment m g R (signed like R).
   double mgR() const noexcept { return mass * gravity * length; }
@@ -54,7 +57,7 @@ double gravity_time(const Body& body) noexcept;
 
 /// Throws InvalidInput for the first rule of SPEC section 1 that `body` breaks:
 /// A, B, C, mass finite and > 0; gravity finite and >= 0; length finite;
-/// the triangle inequalities A + B >= C, B + C >= A, C + A >= B.
+/// the triangle inequalities A + B >= C, B + C >= A, C + A >= B; then validate(damping).
 void validate(const Body& body);
 
 /// The built-in example: a realistic toy top (SI units), spun well above its critical spin.
