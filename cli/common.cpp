@@ -37,7 +37,14 @@ constexpr KeyHelp kKeys[] = {
     {"motion.phi0", "--phi0", "rad, initial phi (tilt about xi)"},
     {"motion.theta_rate0", "--theta_rate0,--theta-rate0", "rad/s, initial theta'"},
     {"motion.phi_rate0", "--phi_rate0,--phi-rate0", "rad/s, initial phi'"},
+    {"damping.transverse", "--transverse-damping", "N m s, d_t: drag torque -d_t w_perp on the axis's motion (>= 0)"},
+    {"damping.axial", "--axial-damping", "N m s, d_a: drag torque -d_a (w.k) k on the spin (>= 0)"},
+    {"damping.friction", "--friction", "N m, tau0: dry friction torque -tau0 sign(w.k) k at the tip (>= 0)"},
 };
+
+const char* group_of(std::string_view key) {
+  return key.starts_with("body.") ? "Body" : key.starts_with("damping.") ? "Damping" : "Motion";
+}
 
 }  // namespace
 
@@ -59,8 +66,13 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(fo
     o.option = command.add_option(spec.option, o.value, spec.help)
                    ->type_name("NUM")
                    ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    o.option->group(std::string(spec.key).starts_with("body.") ? "Body" : "Motion");
+    o.option->group(group_of(spec.key));
   }
+  driven_ = command.add_option("--driven", driven_value_,
+                               "true: a motor holds the spin w.k at its value at t = 0 (a gyroscope)")
+                ->type_name("BOOL")
+                ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                ->group("Damping");
   command.add_option("--format", format_, "output format")
       ->check(CLI::IsMember(formats))
       ->default_str(formats.front());
@@ -82,6 +94,7 @@ void Inputs::resolve() {
   }
   for (auto& [key, o] : overrides_)
     if (o.option->count()) *io::config_field(body, state, key) = o.value;
+  if (driven_->count()) body.damping.driven = driven_value_;
   validate(body);
   validate(state);
   body_ = body;

@@ -64,6 +64,8 @@ class Inputs {
   std::string format_;
   std::string output_;
   std::map<std::string, Override> overrides_;  // "body.A", "motion.spin", ...
+  CLI::Option* driven_ = nullptr;              // --driven (motion.driven, a boolean)
+  bool driven_value_ = false;
   io::Configuration config_;
   Body body_;
   InitialState state_;

@@ -29,6 +29,7 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
   m.M << A, 0.0, 0.0, B;
   m.K0 << -k, 0.0, 0.0, -k;
   m.K2.setZero();
+  m.damping = body.damping.transverse;
   switch (kind) {
     case LinearModelKind::FirstOrder:  // A phi'' + C w0 theta' = k phi;  B theta'' - C w0 phi' = k theta
       m.G1 << 0.0, C, -C, 0.0;
@@ -47,6 +48,8 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
       // (C - A - B)^2 + 2 (A (C - A) + B (C - B)) = C^2 - (A - B)^2, as a product whose
       // factors keep C whole when C << A = B (C - A + B would cancel to C's rounding error).
       m.gyro_stiffness = (C + (B - A)) * (C - (B - A));
+      // The drag -d_t (p, q) on the body rates p = phi_b' - w0 theta_b, q = theta_b' + w0 phi_b.
+      m.N1 << 0.0, -1.0, 1.0, 0.0;
       break;
   }
   return m;
@@ -55,18 +58,23 @@ LinearModel linear_model(LinearModelKind kind, const Body& body) {
 Eigen::Matrix4d state_matrix(const LinearModel& model, double spin, double rate) {
   const Eigen::Matrix2d m_inv = model.M.inverse();
   Eigen::Matrix4d j;
-  j << Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Identity(), -m_inv * model.K(spin) / (rate * rate),
-      -m_inv * model.G(spin) / rate;
+  j << Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Identity(),
+      -m_inv * (model.K(spin) + model.circulatory(spin)) / (rate * rate),
+      -m_inv * (model.G(spin) + model.D()) / rate;
   return j;
 }
 
 CharacteristicPolynomial characteristic_polynomial(const LinearModel& model, double spin) {
-  // det [[M11 l^2 + K11, G12 l], [G21 l, M22 l^2 + K22]] with M, K diagonal, G zero-diagonal.
-  const Eigen::Matrix2d g = model.G(spin), k = model.K(spin);
+  // det [[M11 l^2 + d l + K11, G12 l + N12], [G21 l + N21, M22 l^2 + d l + K22]] with M, K
+  // diagonal, G and N zero-diagonal.
+  const Eigen::Matrix2d g = model.G(spin), k = model.K(spin), n = model.circulatory(spin);
+  const double d = model.damping;
   CharacteristicPolynomial p;
   p.a4 = model.M(0, 0) * model.M(1, 1);
-  p.a2 = model.M(0, 0) * k(1, 1) + model.M(1, 1) * k(0, 0) - g(0, 1) * g(1, 0);
-  p.a0 = k(0, 0) * k(1, 1);
+  p.a3 = d * (model.M(0, 0) + model.M(1, 1));
+  p.a2 = model.M(0, 0) * k(1, 1) + model.M(1, 1) * k(0, 0) + d * d - g(0, 1) * g(1, 0);
+  p.a1 = d * (k(0, 0) + k(1, 1)) - (g(0, 1) * n(1, 0) + g(1, 0) * n(0, 1));
+  p.a0 = k(0, 0) * k(1, 1) - n(0, 1) * n(1, 0);
   return p;
 }
 

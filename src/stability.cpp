@@ -42,6 +42,37 @@ SpinPolynomial product(const SpinPolynomial& p, const SpinPolynomial& q) {
           p.m0 * q.m0, p.m0 * q.m1 + p.m1 * q.m0, p.m1 * q.m1};
 }
 
+SpinPolynomial operator+(const SpinPolynomial& p, const SpinPolynomial& q) {
+  return {p.c0 + q.c0, p.c1 + q.c1, p.c2 + q.c2, p.m0 + q.m0, p.m1 + q.m1, p.m2 + q.m2};
+}
+
+SpinPolynomial operator*(double a, const SpinPolynomial& p) {
+  const double m = std::abs(a);
+  return {a * p.c0, a * p.c1, a * p.c2, m * p.m0, m * p.m1, m * p.m2};
+}
+
+/// The damped quartic a4 l^4 + a3 l^3 + a2 l^2 + a1 l + a0 (characteristic_polynomial) in
+/// s = w0^2, and its Hurwitz determinant h3 = a3 a2 a1 - a4 a1^2 - a3^2 a0: every root has a
+/// negative real part iff a3, a2, a1, a0, h3 > 0 (a4 > 0). All are of degree <= 2 in s: the
+/// gyroscopic and circulatory terms are both proportional to w0 and enter in pairs.
+struct DampedCharacteristic {
+  double a4 = 0.0, a3 = 0.0;
+  SpinPolynomial a2, a1, a0, h3;
+};
+
+DampedCharacteristic damped_characteristic(const LinearModel& m) {
+  DampedCharacteristic c;
+  const double d = m.damping;
+  const SpinPolynomial k11 = linear(m.K0(0, 0), m.K2(0, 0)), k22 = linear(m.K0(1, 1), m.K2(1, 1));
+  c.a4 = m.M(0, 0) * m.M(1, 1);
+  c.a3 = d * (m.M(0, 0) + m.M(1, 1));
+  c.a2 = m.M(0, 0) * k22 + m.M(1, 1) * k11 + linear(d * d, -m.G1(0, 1) * m.G1(1, 0));
+  c.a1 = d * (k11 + k22) + linear(0.0, -d * (m.G1(0, 1) * m.N1(1, 0) + m.G1(1, 0) * m.N1(0, 1)));
+  c.a0 = product(k11, k22) + linear(0.0, -d * d * m.N1(0, 1) * m.N1(1, 0));
+  c.h3 = (c.a3 * product(c.a2, c.a1) + (-c.a4) * product(c.a1, c.a1)) + (-c.a3 * c.a3) * c.a0;
+  return c;
+}
+
 /// The characteristic polynomial's coefficients as functions of s = w0^2 (those of
 /// characteristic_polynomial(model, spin), as polynomials in s).
 struct SpinCharacteristic {
@@ -121,9 +152,108 @@ bool vanishes(const Eigen::Matrix4d& residual) {
   return residual.cwiseAbs().maxCoeff() <= kSemisimple;
 }
 
+/// The eigenvalues of the damped model at `spin`, from the balanced system matrix (Eigen's
+/// Hessenberg QR), each polished by Newton's method on the quartic; sorted like the undamped.
+std::vector<std::complex<double>> damped_eigenvalues(const LinearModel& model, double spin,
+                                                     double rate) {
+  const CharacteristicPolynomial p = characteristic_polynomial(model, spin);
+  const Eigen::Matrix4d j = state_matrix(model, spin, rate);
+  const Eigen::EigenSolver<Eigen::Matrix4d> solver(j, false);
+  std::vector<std::complex<double>> roots;
+  for (int i = 0; i < 4; ++i) {
+    std::complex<double> l = solver.eigenvalues()[i] * rate;
+    for (int it = 0; it < 2; ++it) {
+      const auto f = (((p.a4 * l + p.a3) * l + p.a2) * l + p.a1) * l + p.a0;
+      const auto df = ((4.0 * p.a4 * l + 3.0 * p.a3) * l + 2.0 * p.a2) * l + p.a1;
+      if (std::abs(df) == 0.0) break;
+      const auto next = l - f / df;
+      if (!(std::isfinite(next.real()) && std::isfinite(next.imag())) ||
+          std::abs(next - l) > 1e-6 * std::abs(l) + 1e-300)
+        break;  // near a multiple root Newton is no better than the eigensolver
+      l = next;
+    }
+    roots.push_back(l + 0.0);
+  }
+  std::sort(roots.begin(), roots.end(), [](auto x, auto y) {
+    return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();
+  });
+  return roots;
+}
+
+/// The frequency scale of the damped model at `spin`: the largest |a_k / a4|^(1 / (4 - k)), a
+/// bound of the roots' size up to a factor 2 (Fujiwara), for balancing and zero tests.
+double damped_rate(const LinearModel& model, double spin) {
+  const CharacteristicPolynomial p = characteristic_polynomial(model, spin);
+  double r = 0.0;
+  r = std::max(r, std::abs(p.a3 / p.a4));
+  r = std::max(r, std::sqrt(std::abs(p.a2 / p.a4)));
+  r = std::max(r, std::cbrt(std::abs(p.a1 / p.a4)));
+  r = std::max(r, std::sqrt(std::sqrt(std::abs(p.a0 / p.a4))));
+  return r;
+}
+
+StabilityVerdict damped_stability(const LinearModel& model, double spin) {
+  const DampedCharacteristic c = damped_characteristic(model);
+  const double s = spin * spin;
+  if (!std::isfinite(c.h3.magnitude(s)))
+    throw InvalidInput("motion.spin", fmt::format("{:g} rad/s is too large for this body: its characteristic "
+                                                  "polynomial overflows a double", spin));
+  StabilityVerdict v;
+  const double rate = damped_rate(model, spin);
+  v.eigenvalues = damped_eigenvalues(model, spin, rate);
+  v.growth_rate = v.eigenvalues.back().real();
+  for (const auto& l : v.eigenvalues) v.growth_rate = std::max(v.growth_rate, l.real());
+
+  // Routh-Hurwitz, each condition's sign decided against the size of its terms.
+  int negative = 0, zero = 0;
+  for (const SpinPolynomial* q : {&c.a2, &c.a1, &c.a0, &c.h3}) {
+    if (is_zero(*q, s)) ++zero;
+    else if ((*q)(s) < 0.0) ++negative;
+  }
+  if (negative > 0) {  // a root in the open right half-plane (a closed-left one has all >= 0)
+    v.reason = fmt::format("a mode grows under damping (e-folding time {:.4g} s)",
+                           1.0 / std::max(v.growth_rate, std::numeric_limits<double>::min()));
+    return v;
+  }
+  if (zero == 0) {
+    v.stable = true;
+    v.reason = fmt::format("asymptotically stable: every mode decays (the slowest e-folds in {:.4g} s)",
+                           -1.0 / std::min(v.growth_rate, -std::numeric_limits<double>::min()));
+  } else {
+    // On the boundary: roots on the imaginary axis, stable iff each is semisimple.
+    const Eigen::Matrix4cd j = state_matrix(model, spin, rate).cast<std::complex<double>>();
+    const double axis = 1e-6 * rate;
+    std::vector<std::complex<double>> on_axis;
+    for (const auto& l : v.eigenvalues)
+      if (std::abs(l.real()) <= axis) on_axis.push_back(std::complex<double>(0.0, l.imag()));
+    bool semisimple = true;
+    for (const auto& l : on_axis) {
+      const auto m = std::count_if(on_axis.begin(), on_axis.end(),
+                                   [&](auto x) { return std::abs(x - l) <= axis; });
+      if (m < 2) continue;
+      const Eigen::JacobiSVD<Eigen::Matrix4cd> svd(j - (l / rate) * Eigen::Matrix4cd::Identity());
+      if (svd.singularValues()(4 - m) > kSemisimple) semisimple = false;
+    }
+    v.stable = semisimple;
+    v.reason = semisimple ? "on the damped stability boundary: a mode neither grows nor decays"
+                          : "on the damped stability boundary with a Jordan block: the axis drifts";
+    if (semisimple) v.growth_rate = std::min(v.growth_rate, 0.0);
+  }
+  if (v.stable)
+    for (const auto& l : v.eigenvalues) v.frequencies.push_back(std::abs(l.imag()));
+  std::sort(v.frequencies.begin(), v.frequencies.end());
+  v.frequencies.erase(std::unique(v.frequencies.begin(), v.frequencies.end(),
+                                  [](double x, double y) {
+                                    return std::abs(x - y) <= 1e-12 * std::max(x, y);
+                                  }),
+                      v.frequencies.end());
+  return v;
+}
+
 }  // namespace
 
 StabilityVerdict linear_stability(const LinearModel& model, double spin) {
+  if (model.damped()) return damped_stability(model, spin);
   const SpinCharacteristic c = spin_characteristic(model);
   const double s = spin * spin;
   const double a4 = c.a4, a2 = c.a2(s), a0 = c.a0(s), disc = c.discriminant(s);
@@ -154,6 +284,7 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
   std::sort(v.eigenvalues.begin(), v.eigenvalues.end(), [](auto x, auto y) {
     return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();
   });
+  v.growth_rate = v.eigenvalues.back().real();
 
   const bool oscillatory = mu1.imag() == 0.0 && mu2.imag() == 0.0 && mu1.real() <= 0.0 &&
                            mu2.real() <= 0.0;
@@ -201,12 +332,18 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
 }
 
 std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model) {
-  const SpinCharacteristic c = spin_characteristic(model);
-
   // Every sign change of a condition happens at a root in s = w0^2 of one of these.
+  std::vector<SpinPolynomial> conditions;
+  if (model.damped()) {
+    const DampedCharacteristic c = damped_characteristic(model);
+    conditions = {c.a2, c.a1, c.a0, c.h3};
+  } else {
+    const SpinCharacteristic c = spin_characteristic(model);
+    conditions = {c.k11, c.k22, c.a2, c.discriminant};
+  }
   std::vector<double> ends{0.0};
-  for (const SpinPolynomial* p : {&c.k11, &c.k22, &c.a2, &c.discriminant})
-    for (double s : real_roots(*p))
+  for (const SpinPolynomial& p : conditions)
+    for (double s : real_roots(p))
       if (s > 0.0 && std::isfinite(s)) ends.push_back(s);
   std::sort(ends.begin(), ends.end());
   ends.erase(std::unique(ends.begin(), ends.end(),

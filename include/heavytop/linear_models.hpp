@@ -3,8 +3,11 @@
 /// The three linear models of the axis's small motion (SPEC section 3), as data.
 ///
 /// Each is a gyroscopic system in two angles q = (q1, q2):
-///     M q'' + w0 G1 q' + (K0 + w0^2 K2) q = 0,
-/// with M, K0, K2 diagonal and G1 zero on its diagonal. The coordinates are
+///     M q'' + (w0 G1 + d_t I) q' + (K0 + w0^2 K2 + d_t w0 N1) q = 0,
+/// with M, K0, K2 diagonal, G1 zero on its diagonal, d_t the transverse damping of SPEC
+/// section 6 (0 for the conservative body) and N1 its circulatory part: zero in the axis-frame
+/// models, where the drag -d_t w_perp is -d_t q', and [[0, -1], [1, 0]] in the body frame,
+/// where w_perp = (phi_b' - w0 theta_b, theta_b' + w0 phi_b) also carries the spin. The coordinates are
 ///   first-order, body-fixed: q = (phi, theta), the paper's angles of the axis (Resal) frame;
 ///   linearized: q = (phi_b, theta_b), the same tilt measured in the spinning body frame,
 ///               where the vertical in body axes is gamma = (-theta_b, phi_b, 1) to first order.
@@ -47,14 +50,25 @@ struct LinearModel {
   /// discriminant's w0^4 coefficient needs, set by linear_model() in closed form ((C - A + B)(C + A - B)
   /// for `linearized`, where the sum of its terms cancels for a slender body, C << A).
   double gyro_stiffness = 0.0;
+  /// N m s, d_t: the transverse damping (SPEC section 6; 0 for the conservative body).
+  double damping = 0.0;
+  /// Dimensionless, the circulatory matrix per unit d_t w0 (zero but in `linearized`).
+  Eigen::Matrix2d N1 = Eigen::Matrix2d::Zero();
 
   /// kg m^2/s, gyroscopic matrix at spin w0 (rad/s).
   Eigen::Matrix2d G(double spin) const { return spin * G1; }
-  /// N m, stiffness matrix at spin w0 (rad/s).
+  /// N m, the conservative (diagonal) stiffness matrix at spin w0 (rad/s).
   Eigen::Matrix2d K(double spin) const { return K0 + spin * spin * K2; }
+  /// N m s, the damping matrix d_t I.
+  Eigen::Matrix2d D() const { return damping * Eigen::Matrix2d::Identity(); }
+  /// N m, the circulatory (non-conservative positional) matrix d_t w0 N1 at spin w0 (rad/s).
+  Eigen::Matrix2d circulatory(double spin) const { return damping * spin * N1; }
+  /// True if d_t > 0: the damped analysis applies (odd powers in the polynomial).
+  bool damped() const noexcept { return damping > 0.0; }
 };
 
-/// The model `kind` of `body` (which should satisfy validate()).
+/// The model `kind` of `body` (which should satisfy validate()), with its transverse damping
+/// body.damping.transverse (the linear models keep the spin constant, so only d_t enters).
 LinearModel linear_model(LinearModelKind kind, const Body& body);
 
 /// 1/s, the first-order system matrix J of x = (q1, q2, q1', q2'): x' = J x (rate = 1).
@@ -63,11 +77,13 @@ LinearModel linear_model(LinearModelKind kind, const Body& body);
 /// by rate) whose entries are of order one when rate is the problem's frequency scale.
 Eigen::Matrix4d state_matrix(const LinearModel& model, double spin, double rate = 1.0);
 
-/// The characteristic polynomial det(M l^2 + G l + K) = a4 l^4 + a2 l^2 + a0 (odd powers
-/// vanish for every model here). Units: a4 kg^2 m^4, a2 kg^2 m^4/s^2, a0 kg^2 m^4/s^4.
+/// The characteristic polynomial det(M l^2 + (G + D) l + K + N) = a4 l^4 + a3 l^3 + a2 l^2
+/// + a1 l + a0 (the odd powers vanish without damping). Units: a_k kg^2 m^4 / s^(4-k).
 struct CharacteristicPolynomial {
   double a4 = 0.0;
+  double a3 = 0.0;
   double a2 = 0.0;
+  double a1 = 0.0;
   double a0 = 0.0;
 };
 

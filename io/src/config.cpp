@@ -16,6 +16,7 @@ struct Field {
   const char* key;
   double Body::*body = nullptr;
   double InitialState::*state = nullptr;
+  double Damping::*damping = nullptr;  // of Body::damping
 };
 
 constexpr Field kFields[] = {
@@ -30,6 +31,9 @@ constexpr Field kFields[] = {
     {"motion.phi0", nullptr, &InitialState::phi0},
     {"motion.theta_rate0", nullptr, &InitialState::theta_rate0},
     {"motion.phi_rate0", nullptr, &InitialState::phi_rate0},
+    {"damping.transverse", nullptr, nullptr, &Damping::transverse},
+    {"damping.axial", nullptr, nullptr, &Damping::axial},
+    {"damping.friction", nullptr, nullptr, &Damping::friction},
 };
 
 std::vector<std::string> keys_starting(std::string_view prefix) {
@@ -71,6 +75,10 @@ const std::vector<std::string>& motion_keys() {
   static const auto keys = keys_starting("motion.");
   return keys;
 }
+const std::vector<std::string>& damping_keys() {
+  static const auto keys = keys_starting("damping.");
+  return keys;
+}
 const std::vector<std::string>& required_body_keys() {
   static const std::vector<std::string> keys = {"body.A", "body.B", "body.C", "body.mass", "body.length"};
   return keys;
@@ -78,7 +86,8 @@ const std::vector<std::string>& required_body_keys() {
 
 double* config_field(Body& body, InitialState& state, std::string_view key) {
   for (const Field& f : kFields)
-    if (key == f.key) return f.body ? &(body.*f.body) : &(state.*f.state);
+    if (key == f.key)
+      return f.body ? &(body.*f.body) : f.state ? &(state.*f.state) : &(body.damping.*f.damping);
   return nullptr;
 }
 
@@ -132,7 +141,7 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
   const auto& sections = command_sections();
   for (const auto& [section_key, node] : table) {
     const std::string section(section_key.str());
-    const bool known = section == "body" || section == "motion" || sections.count(section);
+    const bool known = section == "body" || section == "motion" || section == "damping" || sections.count(section);
     if (!known)
       throw InvalidInput(section.empty() ? "\"\"" : printable(section), "unknown section in " + printable(source));
     const auto* sub = node.as_table();
@@ -142,6 +151,13 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
       const std::string key = section + "." + std::string(name_key.str());
       if (double* field = config_field(config.body, config.motion, key)) {
         *field = number_of(value, key);
+        config.given.insert(key);
+        continue;
+      }
+      if (key == kDrivenKey) {
+        const auto driven = value.value_exact<bool>();
+        if (!driven) throw InvalidInput(key, "must be true or false");
+        config.body.damping.driven = *driven;
         config.given.insert(key);
         continue;
       }

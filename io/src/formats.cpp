@@ -18,6 +18,13 @@ Json body_json(const Body& b) {
   return {{"A", b.A}, {"B", b.B}, {"C", b.C}, {"mass", b.mass}, {"gravity", b.gravity}, {"length", b.length}};
 }
 
+/// The "damping" object (SPEC section 6), beside "body" when the body is not conservative.
+void add_damping(Json& out, const Body& b) {
+  if (b.damping.conservative()) return;
+  out["damping"] = {{"transverse", b.damping.transverse}, {"axial", b.damping.axial},
+                    {"friction", b.damping.friction}, {"driven", b.damping.driven}};
+}
+
 }  // namespace
 
 namespace {
@@ -25,6 +32,7 @@ namespace {
 Json stability_object(const Body& body, double spin, const std::vector<ModelStability>& models) {
   Json out;
   out["body"] = body_json(body);
+  add_damping(out, body);
   out["spin"] = spin;
   Json by_name = Json::object();
   for (const auto& r : models) {
@@ -37,6 +45,7 @@ Json stability_object(const Body& body, double spin, const std::vector<ModelStab
     m["eigenvalues"] = Json::array();
     for (const auto& l : r.verdict.eigenvalues) m["eigenvalues"].push_back({l.real(), l.imag()});
     if (r.verdict.stable) m["frequencies"] = r.verdict.frequencies;
+    m["growth_rate"] = r.verdict.growth_rate;
     m["reason"] = r.verdict.reason;
     by_name[std::string(name(r.kind))] = m;
   }
@@ -98,6 +107,10 @@ std::string linear_stability_text(const Body& body, double spin, const std::vect
                      body.B, body.C, body.mgR(),
                      body.length > 0 ? "centre of mass above O" :
                      body.length < 0 ? "hanging: centre of mass below O" : "centre of mass at O");
+  const Damping& d = body.damping;
+  if (!d.conservative())
+    out << fmt::format("Damping: transverse d_t = {:g} N m s, axial d_a = {:g} N m s, friction tau0 = {:g} N m{}\n",
+                       d.transverse, d.axial, d.friction, d.driven ? "; driven (a motor holds the spin)" : "");
   out << fmt::format("Spin: w0 = {:g} rad/s ({:.0f} rpm)\n\n", spin, spin * 30.0 / M_PI);
   out << fmt::format("{:<13} {:<9} {:>16}  {:<28} {}\n", "model", "verdict", "critical rad/s",
                      "stable spins (rad/s)", "why");
@@ -125,7 +138,20 @@ std::string linear_stability_text(const Body& body, double spin, const std::vect
         paper.critical ? fmt::format("{:.6g} rad/s", *paper.critical) : "none",
         truth.critical ? fmt::format("{:.6g} rad/s", *truth.critical) : "none (no spin stabilises it)");
   }
-  if (is_symmetric(body) && body.mgR() > 0)
+  if (d.transverse > 0.0) {
+    if (truth.intervals.empty())
+      out << fmt::format(
+          "\nUnder the drag d_t = {:g} N m s no spin holds this body up (Kelvin-Tait-Chetaev: drag destroys "
+          "stability that rests on gyroscopic forces alone).\n",
+          d.transverse);
+    if (truth.verdict.growth_rate > 0.0)
+      out << fmt::format("At w0 = {:g} rad/s the growing mode e-folds in {:.4g} s (growth rate {:.4g} 1/s).\n", spin,
+                         1.0 / truth.verdict.growth_rate, truth.verdict.growth_rate);
+    else if (truth.verdict.growth_rate < 0.0)
+      out << fmt::format("At w0 = {:g} rad/s every mode decays: the slowest e-folds in {:.4g} s.\n", spin,
+                         -1.0 / truth.verdict.growth_rate);
+  }
+  if (is_symmetric(body) && body.mgR() > 0 && d.transverse == 0.0)
     out << "\nSymmetric top: the classical sleeping-top criterion C^2 w0^2 > 4 A m g R applies "
            "(strictly: at equality the motion grows, erratum E2).\n";
   return out.str();
@@ -138,7 +164,8 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   std::ostringstream out;
   out << linear_stability_text(body, spin, models);
   const LyapunovVerdict& v = lyapunov.verdict;
-  out << "\nThe real body (nonlinear, conservative), beyond the linearisation:\n";
+  out << fmt::format("\nThe real body (nonlinear, conservative{}), beyond the linearisation:\n",
+                     body.damping.conservative() ? "" : ": the damping above ignored");
   out << fmt::format("  linearly stable (the exact linearisation): {}\n",
                      models.back().verdict.stable ? "yes" : "no");
   out << fmt::format("  Lyapunov: {} ({}; certificate {})\n", name(v.verdict), v.reason, name(v.certificate));

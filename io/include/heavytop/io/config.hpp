@@ -21,11 +21,16 @@ namespace heavytop::io {
 /// The keys of [body] and [motion], as "section.name" (SPEC sections 1, 2, 4), in SPEC order.
 const std::vector<std::string>& body_keys();
 const std::vector<std::string>& motion_keys();
+/// The numeric keys of [damping] (SPEC section 6): "damping.transverse", "damping.axial",
+/// "damping.friction"; they are Body::damping's fields.
+const std::vector<std::string>& damping_keys();
+/// SPEC section 6's boolean key: a motor holds the spin (Body::damping.driven).
+inline constexpr std::string_view kDrivenKey = "motion.driven";
 /// The [body] keys a configuration must give (all but gravity).
 const std::vector<std::string>& required_body_keys();
 
-/// The field of `body` or `state` a "body.*" / "motion.*" key names (SI units); nullptr for
-/// any other key.
+/// The field of `body` or `state` a "body.*" / "motion.*" / "damping.*" key names (SI
+/// units); nullptr for any other key (and for the boolean motion.driven).
 double* config_field(Body& body, InitialState& state, std::string_view key);
 
 /// The further sections a configuration may hold, with their keys: {"simulate": {"model", ...}}.

@@ -1,0 +1,211 @@
+// Damping and friction (SPEC section 6; paper-notes E6): the damped linear verdicts against an
+// independent eigen-solve, the Kelvin-Tait-Chetaev instability, the spin-decay law.
+#include <cmath>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include "heavytop/damping.hpp"
+#include "heavytop/stability.hpp"
+#include "test_support.hpp"
+
+namespace heavytop {
+namespace {
+
+using test_support::make_body;
+
+Body damped(Body b, double transverse) {
+  b.damping.transverse = transverse;
+  return b;
+}
+
+double growth(LinearModelKind kind, const Body& b, double spin) {
+  return linear_stability(linear_model(kind, b), spin).growth_rate;
+}
+
+constexpr auto kFirst = LinearModelKind::FirstOrder;
+constexpr auto kFixed = LinearModelKind::BodyFixed;
+constexpr auto kLinear = LinearModelKind::Linearized;
+
+// The damped system matrices written out from the equations themselves, not through
+// LinearModel: the paper's models in the axis frame (drag -d q'), the linearisation as
+// Euler-Poisson in body axes on x = (p, q, gamma_x, gamma_y) with the drag -d (p, q).
+Eigen::Matrix4d independent_matrix(LinearModelKind kind, const Body& b, double w0) {
+  const double A = b.A, B = b.B, C = b.C, k = b.mgR(), d = b.damping.transverse;
+  Eigen::Matrix4d j = Eigen::Matrix4d::Zero();
+  if (kind == kLinear) {
+    j.row(0) << -d / A, (B - C) * w0 / A, 0.0, k / A;   // A p' = (B - C) w0 q + k gy - d p
+    j.row(1) << (C - A) * w0 / B, -d / B, -k / B, 0.0;  // B q' = (C - A) w0 p - k gx - d q
+    j.row(2) << 0.0, -1.0, 0.0, w0;                      // gx' = w0 gy - q
+    j.row(3) << 1.0, 0.0, -w0, 0.0;                      // gy' = p - w0 gx
+    return j;
+  }
+  // (phi, theta, phi', theta'): A phi'' + g12 w0 theta' + d phi' = k phi, B theta'' + g21 w0 phi' + d theta' = k theta
+  const double g12 = kind == kFirst ? C : C - B, g21 = kind == kFirst ? -C : -(C - A);
+  j(0, 2) = j(1, 3) = 1.0;
+  j.row(2) << k / A, 0.0, -d / A, -g12 * w0 / A;
+  j.row(3) << 0.0, k / B, -g21 * w0 / B, -d / B;
+  return j;
+}
+
+std::vector<std::complex<double>> sorted_eigenvalues(const Eigen::Matrix4d& j) {
+  const Eigen::EigenSolver<Eigen::Matrix4d> solver(j, false);
+  std::vector<std::complex<double>> v(solver.eigenvalues().begin(), solver.eigenvalues().end());
+  std::sort(v.begin(), v.end(), [](auto x, auto y) {
+    return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();
+  });
+  return v;
+}
+
+TEST(DampedEigenvalues, EqualAnIndependentEigenSolveOfTheDampedSystemMatrices) {
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> u(0.2, 3.0), spin(0.0, 8.0), drag(1e-3, 1.0);
+  int compared = 0;
+  for (int n = 0; n < 200; ++n) {
+    double A = u(rng), B = u(rng), C = u(rng);
+    if (A + B < C || B + C < A || C + A < B) continue;
+    const Body b = damped(make_body(A, B, C, u(rng) - 1.5), drag(rng));
+    const double w0 = spin(rng);
+    for (auto kind : kLinearModels) {
+      const auto ours = linear_stability(linear_model(kind, b), w0).eigenvalues;
+      const auto theirs = sorted_eigenvalues(independent_matrix(kind, b, w0));
+      ASSERT_EQ(ours.size(), 4u);
+      double scale = 0.0;
+      for (auto l : theirs) scale = std::max(scale, std::abs(l));
+      // Match each eigenvalue to the nearest independent one (sorting can split conjugates).
+      for (auto l : ours) {
+        double best = INFINITY;
+        for (auto r : theirs) best = std::min(best, std::abs(l - r));
+        EXPECT_LE(best, 1e-10 * scale) << name(kind) << " A=" << A << " B=" << B << " C=" << C;
+      }
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 300);
+}
+
+// E6: A = B = 1, C = 2, m g R = 1, d = 0.01 (body-frame linearisation).
+TEST(KelvinTaitChetaev, TheGrowthRatesOfE6) {
+  const Body sym = damped(make_body(1.0, 1.0, 2.0, 1.0), 0.01);
+  EXPECT_NEAR(growth(kLinear, sym, 1.5), 1.7e-3, 0.05e-3);
+  EXPECT_NEAR(growth(kLinear, sym, 3.0), 3.0e-4, 0.05e-4);
+  EXPECT_NEAR(growth(kLinear, sym, 10.0), 2.5e-5, 0.05e-5);
+  const Body asym = damped(make_body(1.0, 1.5, 2.0, 1.0), 0.01);
+  EXPECT_NEAR(growth(kLinear, asym, 1.5), 1.4e-3, 0.05e-3);
+  EXPECT_NEAR(growth(kLinear, asym, 3.0), 2.9e-4, 0.05e-4);
+  const Body hanging = damped(make_body(1.0, 1.0, 2.0, -1.0), 0.01);
+  EXPECT_NEAR(growth(kLinear, hanging, 0.5), -2.8e-3, 0.05e-3);
+}
+
+TEST(KelvinTaitChetaev, EverySymmetricTopAboveItsPivotIsUnstableAtEverySpinUnderDrag) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.2, 3.0), drag(1e-4, 1.0);
+  for (int n = 0; n < 100; ++n) {
+    const double A = u(rng), C = std::min(u(rng), 2.0 * A);
+    const Body b = damped(make_body(A, A, C, u(rng)), drag(rng));
+    for (auto kind : {kFirst, kLinear}) {
+      const LinearModel model = linear_model(kind, b);
+      EXPECT_TRUE(stable_spin_intervals(model).empty()) << name(kind);
+      for (double w0 : {0.0, 0.5, 2.0, 10.0, 100.0}) {
+        const auto v = linear_stability(model, w0);
+        EXPECT_FALSE(v.stable);
+        EXPECT_GT(v.growth_rate, 0.0) << name(kind) << " at " << w0;
+      }
+    }
+  }
+}
+
+TEST(KelvinTaitChetaev, AHangingBodyWithCAboveAAndBIsAsymptoticallyStableAtEverySpin) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.2, 3.0), drag(1e-3, 1.0);
+  for (int n = 0; n < 100; ++n) {
+    const double A = u(rng), B = u(rng), C = std::max(A, B) * 1.2;
+    if (A + B < C) continue;
+    const Body b = damped(make_body(A, B, C, -u(rng)), drag(rng));
+    const LinearModel model = linear_model(kLinear, b);
+    const auto intervals = stable_spin_intervals(model);
+    ASSERT_EQ(intervals.size(), 1u);
+    EXPECT_EQ(intervals[0].lo, 0.0);
+    EXPECT_FALSE(intervals[0].hi);
+    for (double w0 : {0.0, 0.3, 1.0, 5.0, 50.0}) EXPECT_LT(linear_stability(model, w0).growth_rate, 0.0);
+  }
+}
+
+// E6: a superfast asymmetric body that drag leaves asymptotically stable, and its window of
+// spins found exactly: the interval ends are where the growth rate crosses zero.
+TEST(KelvinTaitChetaev, AnAsymmetricBodysWindowOfAsymptoticStability) {
+  const Body b = damped(make_body(2.549, 1.265, 3.615, 2.94), 0.5445);
+  const LinearModel model = linear_model(kLinear, b);
+  EXPECT_NEAR(growth(kLinear, b, 2.136), -7.79e-3, 0.005e-3);
+  const auto intervals = stable_spin_intervals(model);
+  ASSERT_FALSE(intervals.empty());
+  bool inside = false;
+  for (const auto& i : intervals) {
+    if (i.lo <= 2.136 && (!i.hi || 2.136 <= *i.hi)) inside = true;
+    // Each finite end is a zero of the growth rate, with the sign changing across it.
+    for (auto end : {std::optional<double>(i.lo), i.hi}) {
+      if (!end || *end == 0.0) continue;
+      const double below = growth(kLinear, b, *end * (1.0 - 1e-7)), above = growth(kLinear, b, *end * (1.0 + 1e-7));
+      EXPECT_LT(below * above, 0.0) << "end " << *end;
+      EXPECT_LE(std::abs(growth(kLinear, b, *end)), 1e-9);
+    }
+  }
+  EXPECT_TRUE(inside);
+}
+
+TEST(Damping, WithoutDragTheVerdictIsTheConservativeOneAndTheGrowthRateIsZeroWhenStable) {
+  const Body b = make_body(1.0, 1.5, 2.0, 1.0);
+  for (auto kind : kLinearModels)
+    for (double w0 : {0.5, 2.0, 5.0}) {
+      const auto v = linear_stability(linear_model(kind, b), w0);
+      if (v.stable) { EXPECT_EQ(v.growth_rate, 0.0); }
+      else { EXPECT_GT(v.growth_rate, 0.0); }
+    }
+}
+
+// ---- The spin-decay law C w' = -d_a w - tau0 sign(w) ------------------------------------------
+
+TEST(SpinDecayLaw, SolvesItsDifferentialEquationAndStopsWhereFrictionStopsIt) {
+  for (auto [da, tau] : {std::pair{0.3, 0.0}, std::pair{0.0, 0.2}, std::pair{0.3, 0.2}}) {
+    const SpinDecayLaw law{2.0, da, tau};
+    const double w0 = 5.0;
+    for (double t : {0.1, 1.0, 3.0}) {
+      const double w = law.spin(w0, t);
+      if (w == 0.0) continue;
+      const double h = 1e-5;  // central difference: C w' + d_a w + tau0 = 0
+      const double rate = (law.spin(w0, t + h) - law.spin(w0, t - h)) / (2.0 * h);
+      EXPECT_NEAR(2.0 * rate + da * w + tau, 0.0, 1e-8);
+      // time_to inverts spin.
+      EXPECT_NEAR(*law.time_to(w0, w), t, 1e-12 * t + 1e-14);
+    }
+    if (tau > 0.0) {
+      const double stop = *law.stop_time(w0);
+      EXPECT_EQ(law.spin(w0, stop * (1 + 1e-12)), 0.0);
+      EXPECT_GT(law.spin(w0, stop * (1 - 1e-6)), 0.0);
+      EXPECT_NEAR(*law.time_to(w0, 0.0), stop, 1e-12 * stop);
+      if (da == 0.0) EXPECT_NEAR(stop, 2.0 * w0 / tau, 1e-12);  // t = C w0 / tau0
+    } else {
+      EXPECT_FALSE(law.time_to(w0, 0.0));
+      EXPECT_FALSE(law.stop_time(w0));
+    }
+    EXPECT_NEAR(law.spin(-w0, 1.0), -law.spin(w0, 1.0), 1e-15);
+  }
+}
+
+TEST(Damping, ValidationNamesTheKey) {
+  Body b = make_body(1.0, 1.0, 1.5, 1.0);
+  b.damping.axial = -1.0;
+  try {
+    validate(b);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "damping.axial");
+  }
+  b.damping.axial = 0.0;
+  b.damping.friction = NAN;
+  EXPECT_THROW(validate(b), InvalidInput);
+}
+
+}  // namespace
+}  // namespace heavytop
