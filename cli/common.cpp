@@ -52,7 +52,8 @@ std::string flag_of(const std::string& field) {
   static const std::map<std::string, std::string> flags = {
       {"rtol", "--rtol"}, {"atol", "--atol"},       {"max_steps", "--max-steps"}, {"step", "--step"},
       {"order", "--order"}, {"horizon", "--horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
-      {"t_end", "--t-end"}, {"times", "--t-end"},
+      {"t_end", "--t-end"}, {"times", "--t-end"}, {"model", "--model"}, {"method", "--method"},
+      {"integrator", "--integrator"},
   };
   auto it = flags.find(field);
   return it == flags.end() ? field : it->second;

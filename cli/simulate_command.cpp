@@ -111,6 +111,10 @@ Action add_simulate_command(CLI::App& app) {
     if (*integrator != Integrator::Splitting && (o->step_option->count() || o->order_option->count()))
       throw InvalidInput(o->step_option->count() ? "--step" : "--order", "applies to --integrator splitting only");
     o->options.method = o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;
+    // Unasked, a damped linear model takes the route that covers it (the closed form does not).
+    if (!o->method_option->count() && !config.settings.count("simulate.method") &&
+        inputs->body().damping.transverse > 0.0)
+      o->options.method = LinearMethod::Numeric;
     o->options.integrator = *integrator;
 
     const bool json = inputs->format() == "json";

@@ -208,7 +208,7 @@ Wander axis_wander(const Body& body, const InitialState& initial, double horizon
       w.max_tilt = 0.0;  // the upright permanent rotation is an exact motion: it never tilts
       return w;
     }
-    if (is_symmetric(body)) {
+    if (is_symmetric(body) && body.damping.conservative()) {
       w.max_tilt = nutation_bounds(lagrange_top(body, initial)).max_tilt;
       return w;
     }

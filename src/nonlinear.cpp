@@ -34,16 +34,22 @@ namespace odeint = boost::numeric::odeint;
 // spin (docs/nonlinear.md). This is an exact change of variables, valid for any body.
 //
 // State: p = (w, x, y, z) [0..3], v = (v1, v2) in N axes [4, 5] (rad/s), w3 [6] (rad/s),
-// psi [7] (rad).
-using State = std::array<double, 8>;
+// psi [7] (rad). A damped body (SPEC section 6) adds the integrals of what its torques take
+// away: the work [8] (J), the vertical [9] and the axial [10] angular momentum (kg m^2/s), so
+// that E + work, L_zeta + loss and C w3 + loss are first integrals the monitor checks.
+template <bool Damped>
+using StateOf = std::array<double, Damped ? 11 : 8>;
+using State = StateOf<false>;
 constexpr int kPw = 0, kPx = 1, kPy = 2, kPz = 3, kV1 = 4, kV2 = 5, kW3 = 6, kPsi = 7;
+constexpr int kWork = 8, kVerticalLoss = 9, kAxialLoss = 10;
 
 // gamma = R_p^T e_zeta, the vertical in N axes (third row of R_p). Dividing by |p|^2 makes the
 // equations depend on the direction of p only, so its norm can drift without effect.
 struct Vertical {
   double g1, g2, g3;
 };
-inline Vertical vertical(const State& x) {
+template <class S>
+inline Vertical vertical(const S& x) {
   const double w = x[kPw], qx = x[kPx], qy = x[kPy], qz = x[kPz];
   const double inv = 1.0 / (w * w + qx * qx + qy * qy + qz * qz);
   return {2.0 * (qx * qz - w * qy) * inv, 2.0 * (qy * qz + w * qx) * inv,
@@ -51,7 +57,8 @@ inline Vertical vertical(const State& x) {
 }
 
 // p' = 1/2 p (x) (0, v1, v2, 0).
-inline void attitude_rate(const State& x, State& d) {
+template <class S>
+inline void attitude_rate(const S& x, S& d) {
   const double w = x[kPw], qx = x[kPx], qy = x[kPy], qz = x[kPz], v1 = x[kV1], v2 = x[kV2];
   d[kPw] = -0.5 * (qx * v1 + qy * v2);
   d[kPx] = 0.5 * (w * v1 - qz * v2);
@@ -59,16 +66,26 @@ inline void attitude_rate(const State& x, State& d) {
   d[kPz] = 0.5 * (qx * v2 - qy * v1);
 }
 
-// Euler: I w' + w x I w = m g R (gamma x e3) in body axes; v = Rz(psi) (w1, w2) adds w3 J v.
-// Symmetric (A == B): the transverse inertia is isotropic, psi drops out, no trigonometry.
-template <bool Symmetric>
+// Euler: I w' + w x I w = m g R (gamma x e3) + tau in body axes; v = Rz(psi) (w1, w2) adds
+// w3 J v. Symmetric (A == B): the transverse inertia is isotropic, psi drops out, no
+// trigonometry. Damped: tau = -d_t w_perp + tau_z k, with tau_z the axial torque of the mode:
+// sliding (-d_a w3 - tau0 sign, sign = `mode`), stuck (mode 0: static friction holds w3 = 0),
+// or driven (the motor cancels what would change w3).
+template <bool Symmetric, bool Damped = false>
 struct Equations {
+  using State = StateOf<Damped>;
   double c_over_a = 0.0;  // C / A (symmetric case)
   double bc_a = 0.0;      // (B - C) / A
   double ca_b = 0.0;      // (C - A) / B
   double ab_c = 0.0;      // (A - B) / C
   double k_a = 0.0;       // m g R / A, 1/s^2
   double k_b = 0.0;       // m g R / B, 1/s^2
+  double drag = 0.0;      // d_t, N m s
+  double axial = 0.0;     // d_a, N m s
+  double friction = 0.0;  // tau0, N m
+  double a = 0.0, b = 0.0, c = 0.0;  // A, B, C
+  bool driven = false;
+  double mode = 1.0;      // sign of w3 while sliding; 0 while dry friction holds it
 
   explicit Equations(const Body& b)
       : c_over_a(b.C / b.A),
@@ -76,26 +93,60 @@ struct Equations {
         ca_b((b.C - b.A) / b.B),
         ab_c((b.A - b.B) / b.C),
         k_a(b.mgR() / b.A),
-        k_b(b.mgR() / b.B) {}
+        k_b(b.mgR() / b.B),
+        drag(b.damping.transverse),
+        axial(b.damping.axial),
+        friction(b.damping.friction),
+        a(b.A), b(b.B), c(b.C),
+        driven(b.damping.driven) {}
+
+  // N m, the axial torque tau_z on the body, given the gyroscopic (A - B) w1 w2.
+  double axial_torque(double w3, double gyroscopic) const {
+    if (driven || mode == 0.0) return -gyroscopic;  // the motor or static friction holds w3
+    return -axial * w3 - friction * mode;
+  }
+
+  // N m, the torque the motor produces: what holds w3 against the body and its own loads.
+  double motor_torque(double w3, double gyroscopic) const {
+    return -gyroscopic + axial * w3 + friction * (w3 > 0.0 ? 1.0 : w3 < 0.0 ? -1.0 : 0.0);
+  }
 
   void operator()(const State& x, State& d, double /*t*/) const {
     attitude_rate(x, d);
     const Vertical g = vertical(x);
     const double v1 = x[kV1], v2 = x[kV2], w3 = x[kW3];
+    [[maybe_unused]] double gyroscopic = 0.0;  // (A - B) w1 w2, N m
     if constexpr (Symmetric) {
       const double n = c_over_a * w3;  // nutation frequency C w3 / A
       d[kV1] = -n * v2 + k_a * g.g2;
       d[kV2] = n * v1 - k_a * g.g1;
       d[kW3] = 0.0;
+      if constexpr (Damped) {  // -d_t w_perp / A, the same in N axes as in body axes
+        d[kV1] -= drag / a * v1;
+        d[kV2] -= drag / a * v2;
+      }
     } else {
-      const double c = std::cos(x[kPsi]), s = std::sin(x[kPsi]);
-      const double w1 = c * v1 + s * v2, w2 = c * v2 - s * v1;  // body axes: Rz(-psi)
-      const double b1 = c * g.g1 + s * g.g2, b2 = c * g.g2 - s * g.g1;
-      const double dw1 = bc_a * w2 * w3 + k_a * b2;
-      const double dw2 = ca_b * w3 * w1 - k_b * b1;
-      d[kV1] = c * dw1 - s * dw2 - w3 * v2;  // back to N: Rz(psi), plus w3 J v
-      d[kV2] = s * dw1 + c * dw2 + w3 * v1;
+      const double cs = std::cos(x[kPsi]), sn = std::sin(x[kPsi]);
+      const double w1 = cs * v1 + sn * v2, w2 = cs * v2 - sn * v1;  // body axes: Rz(-psi)
+      const double b1 = cs * g.g1 + sn * g.g2, b2 = cs * g.g2 - sn * g.g1;
+      double dw1 = bc_a * w2 * w3 + k_a * b2;
+      double dw2 = ca_b * w3 * w1 - k_b * b1;
+      if constexpr (Damped) {
+        dw1 -= drag / a * w1;
+        dw2 -= drag / b * w2;
+        gyroscopic = (a - b) * w1 * w2;
+      }
+      d[kV1] = cs * dw1 - sn * dw2 - w3 * v2;  // back to N: Rz(psi), plus w3 J v
+      d[kV2] = sn * dw1 + cs * dw2 + w3 * v1;
       d[kW3] = ab_c * w1 * w2;
+    }
+    if constexpr (Damped) {
+      const double tz = axial_torque(w3, gyroscopic);
+      d[kW3] += tz / c;
+      // What the torques take away: -tau.w, -tau.zeta (gravity's torque has none) and -tau_z.
+      d[kWork] = drag * (v1 * v1 + v2 * v2) - tz * w3;
+      d[kVerticalLoss] = drag * (v1 * g.g1 + v2 * g.g2) - tz * g.g3;
+      d[kAxialLoss] = -tz;
     }
     d[kPsi] = w3;
   }
@@ -103,16 +154,22 @@ struct Equations {
 
 // ---- Conversions ------------------------------------------------------------------------------
 
-State to_state(const RigidBodyState& rb) {
+template <class S = State>
+S to_state(const RigidBodyState& rb) {
   const Eigen::Quaterniond q = unit_quaternion(rb.attitude);
-  return {q.w(), q.x(), q.y(), q.z(), rb.omega.x(), rb.omega.y(), rb.omega.z(), 0.0};
+  S x{};  // the integrals of a damped body start at 0
+  const double head[] = {q.w(), q.x(), q.y(), q.z(), rb.omega.x(), rb.omega.y(), rb.omega.z(), 0.0};
+  std::copy(std::begin(head), std::end(head), x.begin());
+  return x;
 }
 
-Eigen::Matrix3d attitude_of_p(const State& x) {
+template <class S>
+Eigen::Matrix3d attitude_of_p(const S& x) {
   return Eigen::Quaterniond(x[kPw], x[kPx], x[kPy], x[kPz]).normalized().toRotationMatrix();
 }
 
-RigidBodyState to_rigid_body(const State& x) {
+template <class S>
+RigidBodyState to_rigid_body(const S& x) {
   const double c = std::cos(x[kPsi]), s = std::sin(x[kPsi]);
   Eigen::Matrix3d rz;
   rz << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
@@ -124,7 +181,8 @@ RigidBodyState to_rigid_body(const State& x) {
 
 // The axis k = R_p e3 and k' = R (w x e3) = v2 n1 - v1 n2 (n1, n2 the first columns of R_p):
 // the spin never enters, so k' carries no rounding error of size |w3|.
-AxisAngles angles_of(const State& x) {
+template <class S>
+AxisAngles angles_of(const S& x) {
   const Eigen::Matrix3d rp = attitude_of_p(x);
   const Eigen::Vector3d k = rp.col(2);
   const Eigen::Vector3d k_rate = x[kV2] * rp.col(0) - x[kV1] * rp.col(1);
@@ -132,13 +190,15 @@ AxisAngles angles_of(const State& x) {
 }
 
 // Tilt acos(k_zeta), evaluated as atan2(|k_horizontal|, k_zeta): accurate near 0 as well.
-double tilt_of(const State& x) {
+template <class S>
+double tilt_of(const S& x) {
   const Vertical g = vertical(x);  // (n1.zeta, n2.zeta, k.zeta), normalised
   return std::atan2(std::hypot(g.g1, g.g2), g.g3);
 }
 
 // d(k_zeta)/dt = (v2 n1 - v1 n2).zeta.
-double tilt_cos_rate(const State& x) {
+template <class S>
+double tilt_cos_rate(const S& x) {
   const Vertical g = vertical(x);
   return x[kV2] * g.g1 - x[kV1] * g.g2;
 }
@@ -157,7 +217,8 @@ Violation first_violation(const NonlinearOptions& o) {
 // ---- Drift monitor (only when a summary is asked for; scales_of() and note_drift() shared) ----
 
 // E, L_zeta, C w3 straight from the integration state (no matrices; used at every step).
-ConservedQuantities conserved_of_state(const Body& body, const State& x, bool symmetric) {
+template <class S>
+ConservedQuantities conserved_of_state(const Body& body, const S& x, bool symmetric) {
   const Vertical g = vertical(x);
   double w1 = x[kV1], w2 = x[kV2], b1 = g.g1, b2 = g.g2;
   if (!symmetric) {  // to body axes; for A == B the transverse terms are invariant under Rz
@@ -167,7 +228,13 @@ ConservedQuantities conserved_of_state(const Body& body, const State& x, bool sy
     b1 = c * g.g1 + s * g.g2;
     b2 = c * g.g2 - s * g.g1;
   }
-  return conserved_from(body, w1, w2, x[kW3], b1, b2, g.g3);
+  ConservedQuantities q = conserved_from(body, w1, w2, x[kW3], b1, b2, g.g3);
+  if constexpr (std::tuple_size_v<S> > kWork) {  // damped: plus what the torques took away
+    q.energy += x[kWork];
+    q.vertical_momentum += x[kVerticalLoss];
+    q.axial_momentum += x[kAxialLoss];
+  }
+  return q;
 }
 
 // ---- The integrator ---------------------------------------------------------------------------
@@ -175,10 +242,13 @@ ConservedQuantities conserved_of_state(const Body& body, const State& x, bool sy
 // Dormand-Prince 5(4), error-controlled, with its own continuous extension for dense output.
 // We drive the controlled stepper ourselves (rather than odeint's dense-output wrapper) to
 // count rejected steps, to bound the work and to keep the state on its manifold between
-// steps: |p| = 1 and psi in [-pi, pi].
-template <bool Symmetric>
+// steps: |p| = 1 and psi in [-pi, pi]. A damped body with dry friction has one discontinuity,
+// sign(w3): each mode's equations are smooth, and a change of mode is an event located on the
+// dense output, where the integration restarts (w3 = 0 exactly once it sticks: no chattering).
+template <bool Symmetric, bool Damped = false>
 class Integrator {
  public:
+  using State = StateOf<Damped>;
   using Stepper = odeint::runge_kutta_dopri5<State>;
   using Controlled = odeint::controlled_runge_kutta<Stepper>;
 
@@ -190,7 +260,10 @@ class Integrator {
         max_steps_(options.max_steps),
         summary_(summary),
         x_(x0) {
+    if constexpr (Damped) equations_.mode = initial_mode(x0);
     equations_(x_, dxdt_, 0.0);
+    end_x_ = x_;
+    end_dxdt_ = dxdt_;
     dt_ = initial_step(options, horizon);
     if (summary_) {
       *summary_ = NonlinearSummary{};
@@ -203,8 +276,10 @@ class Integrator {
 
   double time() const { return t_; }
   double previous_time() const { return t_old_; }
+  const Equations<Symmetric, Damped>& equations() const { return equations_; }
 
-  // One accepted step from time() on; afterwards interpolate() covers [previous_time(), time()].
+  // One accepted step from time() on (shortened to an event of dry friction); afterwards
+  // interpolate() covers [previous_time(), time()].
   void step() {
     commit();
     x_old_ = x_;
@@ -240,6 +315,12 @@ class Integrator {
             "be met)",
             t_));
     }
+    end_x_ = x_;
+    end_dxdt_ = dxdt_;
+    end_t_ = t_;
+    if constexpr (Damped) {
+      if (equations_.friction > 0.0 && !equations_.driven) change_friction_mode();
+    }
     if (summary_) monitor();
   }
 
@@ -249,10 +330,70 @@ class Integrator {
       out = x_;
       return;
     }
-    controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, x_, dxdt_, t_);
+    controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, end_x_, end_dxdt_, end_t_);
   }
 
  private:
+  // (A - B) w1 w2 in the state x (N m): the gyroscopic torque on the spin.
+  double gyroscopic(const State& x) const {
+    if constexpr (Symmetric) return 0.0;
+    const RigidBodyState rb = to_rigid_body(x);
+    return (body_.A - body_.B) * rb.omega.x() * rb.omega.y();
+  }
+
+  // Sliding in the direction of w3, or stuck when w3 = 0 and friction can hold it.
+  double initial_mode(const State& x) const {
+    if (x[kW3] != 0.0) return x[kW3] > 0.0 ? 1.0 : -1.0;
+    const double drive = gyroscopic(x);
+    return std::abs(drive) <= body_.damping.friction ? 0.0 : (drive > 0.0 ? 1.0 : -1.0);
+  }
+
+  // After a step in one friction mode: if the mode ended inside it (w3 reached 0 while
+  // sliding, or the gyroscopic torque overcame the static friction while stuck), the step
+  // is cut back to that moment, found on the dense output, and the next mode starts there.
+  void change_friction_mode() {
+    const double mode = equations_.mode;
+    std::function<double(const State&)> event;
+    if (mode != 0.0) {
+      if (x_[kW3] * mode > 0.0) return;
+      event = [mode](const State& y) { return y[kW3] * mode; };
+    } else {
+      if constexpr (Symmetric) return;  // (A - B) w1 w2 = 0: stuck for good
+      if (std::abs(gyroscopic(x_)) <= body_.damping.friction) return;
+      event = [this](const State& y) { return body_.damping.friction - std::abs(gyroscopic(y)); };
+    }
+    State y;
+    auto at = [&](double t) {
+      interpolate_step(t, y);
+      return event(y);
+    };
+    double t_event = t_;
+    if (const double f1 = at(t_); f1 < 0.0) {
+      std::uintmax_t iterations = 100;
+      const double width = t_ - t_old_;
+      const auto bracket = boost::math::tools::toms748_solve(
+          at, t_old_, t_, event(x_old_), f1,
+          [width](double a, double b) { return std::abs(b - a) <= 1e-15 * width; }, iterations);
+      t_event = bracket.second;
+    }
+    interpolate_step(t_event, y);
+    if (mode != 0.0) {
+      y[kW3] = 0.0;  // stopped: from here on exactly zero while it sticks
+      const double drive = gyroscopic(y);
+      equations_.mode = std::abs(drive) <= body_.damping.friction ? 0.0 : (drive > 0.0 ? 1.0 : -1.0);
+    } else {
+      equations_.mode = gyroscopic(y) > 0.0 ? 1.0 : -1.0;
+    }
+    x_ = y;
+    t_ = t_event;
+    equations_(x_, dxdt_, t_);
+    if (summary_) ++summary_->rhs_evaluations;
+  }
+
+  void interpolate_step(double t, State& out) const {
+    controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, end_x_, end_dxdt_, end_t_);
+  }
+
   double initial_step(const NonlinearOptions& o, double horizon) const {
     // Hairer's first guess, 1% of |x| / |x'| in the controller's error norm; the weights are
     // kept away from 0 (a tiny atol on a zero component) so that the ratio stays finite.
@@ -296,37 +437,53 @@ class Integrator {
   static constexpr int kMaxConsecutiveRejections = 100;
 
   const Body& body_;
-  Equations<Symmetric> equations_;
+  Equations<Symmetric, Damped> equations_;
   Controlled controlled_;
   std::size_t max_steps_;
   NonlinearSummary* summary_;
   std::size_t attempts_ = 0;
   Scales scales_;
   ConservedQuantities initial_;
-  State x_, dxdt_{}, x_old_{}, dxdt_old_{};
-  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+  // The current state (x_, dxdt_ at t_), the last step's start and its end (end_*: the
+  // continuous extension's ends, which an event leaves in place while t_ moves back).
+  State x_, dxdt_{}, x_old_{}, dxdt_old_{}, end_x_{}, end_dxdt_{};
+  double t_ = 0.0, t_old_ = 0.0, end_t_ = 0.0, dt_ = 0.0;
 };
 
 // Steps between two progress calls inside a sample interval (~20 us of work each).
 constexpr std::size_t kStepsPerProgress = 64;
 
-template <bool Symmetric>
+// The damped body's extra columns: what its torques took away (each the balance of a
+// conserved quantity: energy_drift + dissipated_work = 0, and so on), and the motor's torque.
+void add_damping_columns(Trajectory& out, std::size_t n, bool driven) {
+  std::vector<const char*> names = {"dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"};
+  if (driven) names.push_back("motor_torque");
+  for (const char* name : names) {
+    out.extra.emplace_back(name, std::vector<double>{});
+    out.extra.back().second.reserve(n);
+  }
+}
+
+template <bool Symmetric, bool Damped>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
               const NonlinearOptions& options, NonlinearSummary* summary) {
-  const State x0 = to_state(rb0);
+  using State = StateOf<Damped>;
+  const State x0 = to_state<State>(rb0);
   const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
-  Integrator<Symmetric> integrator(body, x0, horizon, options, summary);
+  Integrator<Symmetric, Damped> integrator(body, x0, horizon, options, summary);
   const ConservedQuantities initial = conserved_quantities(body, rb0);
 
   const std::size_t room = std::min(samples.count, samples.chunk);
   Trajectory out;
   out.reserve(room);
   add_conserved_columns(out, room);
+  const std::size_t damping_column = out.extra.size();
+  if constexpr (Damped) add_damping_columns(out, room, body.damping.driven);
 
   // At t = 0 the angles come from the initial attitude itself (SPEC section 2), not from a
   // round trip through the quaternion; k' = R (w x e3) as in angles_of().
   const AxisAngles a0 = axis_angles_of(rb0);
-  State x;
+  State x = x0;
   for (std::size_t i = 0; i < samples.count; ++i) {
     const double t = samples.time(i);
     ConservedQuantities q = initial;
@@ -343,14 +500,26 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
     }
     push_angles(out, t, a);
     push_conserved(out, q, initial);
+    if constexpr (Damped) {
+      out.extra[damping_column].second.push_back(x[kWork]);
+      out.extra[damping_column + 1].second.push_back(x[kVerticalLoss]);
+      out.extra[damping_column + 2].second.push_back(x[kAxialLoss]);
+      if (body.damping.driven) {
+        const RigidBodyState rb = to_rigid_body(x);
+        out.extra[damping_column + 3].second.push_back(integrator.equations().motor_torque(
+            rb.omega.z(), (body.A - body.B) * rb.omega.x() * rb.omega.y()));
+      }
+    }
     maybe_flush(samples, out, i + 1 == samples.count);
     if (options.progress) options.progress(t);
   }
 }
 
-template <bool Symmetric>
-TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
+template <bool Symmetric, bool Damped>
+TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
                        const NonlinearOptions& options, NonlinearSummary* summary) {
+  using State = StateOf<Damped>;
+  const State x0 = to_state<State>(rb0);
   TiltExtremes e;
   if (summary) *summary = NonlinearSummary{};
   const double tilt0 = tilt_of(x0);
@@ -358,12 +527,37 @@ TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double
   e.exceeded = tilt0 > stop_above;
   if (e.exceeded || horizon == 0.0) return e;
 
-  Integrator<Symmetric> integrator(body, x0, horizon, options, summary);
+  Integrator<Symmetric, Damped> integrator(body, x0, horizon, options, summary);
   auto note = [&](double t, const State& x) {
     const double tilt = tilt_of(x);
     if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
     if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
     return tilt > stop_above;
+  };
+
+  // The first time in [t0, t_hi] the tilt passes stop_above (it is below at t0), located on
+  // the dense output: where the scan ends.
+  auto stop_at_crossing = [&](double t0, double t_hi) {
+    State y;
+    auto excess = [&](double t) {
+      integrator.interpolate(t, y);
+      return tilt_of(y) - stop_above;
+    };
+    const double below = excess(t0), above = excess(t_hi);
+    double t_cross = t0;
+    if (below < 0.0 && above > 0.0) {
+      std::uintmax_t iterations = 100;
+      const double width = t_hi - t0;
+      t_cross = boost::math::tools::toms748_solve(
+                    excess, t0, t_hi, below, above,
+                    [width](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * width; }, iterations)
+                    .second;
+    }
+    integrator.interpolate(t_cross, y);
+    e.exceeded = true;
+    e.t_end = t_cross;
+    e.spin_at_end = y[kW3];
+    return e;
   };
 
   double rate_old = tilt_cos_rate(x0);
@@ -389,20 +583,14 @@ TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double
           [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
       const double tr = 0.5 * (bracket.first + bracket.second);
       integrator.interpolate(tr, y);
-      if (note(tr, y)) {
-        e.exceeded = true;
-        e.t_end = tr;
-        return e;
-      }
+      if (note(tr, y)) return stop_at_crossing(t0, tr);
     }
-    if (note(t1, x)) {
-      e.exceeded = true;
-      e.t_end = t1;
-      return e;
-    }
+    if (note(t1, x)) return stop_at_crossing(t0, t1);
     rate_old = rate_new;
   }
   e.t_end = horizon;
+  integrator.interpolate(std::min(integrator.time(), horizon), x);
+  e.spin_at_end = x[kW3];
   return e;
 }
 
@@ -443,8 +631,14 @@ void detail::stream_nonlinear(const Body& body, const InitialState& initial, con
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
   // Exact equality picks the cheaper right-hand side whose transverse inertia is isotropic
   // (a body symmetric only to kSymmetryTolerance takes the general one).
-  if (body.A == body.B) simulate<true>(body, rb0, samples, options, summary);
-  else simulate<false>(body, rb0, samples, options, summary);
+  const bool damped = !body.damping.conservative();
+  if (body.A == body.B) {
+    if (damped) simulate<true, true>(body, rb0, samples, options, summary);
+    else simulate<true, false>(body, rb0, samples, options, summary);
+  } else {
+    if (damped) simulate<false, true>(body, rb0, samples, options, summary);
+    else simulate<false, false>(body, rb0, samples, options, summary);
+  }
 }
 
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
@@ -456,9 +650,13 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
   if (!(std::isfinite(horizon) && horizon >= 0.0))
     throw InvalidInput("horizon", "must be a finite number >= 0");
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
-  const State x0 = to_state(initial_rigid_body_state(initial));
-  return body.A == body.B ? scan_tilt<true>(body, x0, horizon, stop_above, options, summary)
-                          : scan_tilt<false>(body, x0, horizon, stop_above, options, summary);
+  const RigidBodyState rb0 = initial_rigid_body_state(initial);
+  const bool damped = !body.damping.conservative();
+  if (body.A == body.B)
+    return damped ? scan_tilt<true, true>(body, rb0, horizon, stop_above, options, summary)
+                  : scan_tilt<true, false>(body, rb0, horizon, stop_above, options, summary);
+  return damped ? scan_tilt<false, true>(body, rb0, horizon, stop_above, options, summary)
+                : scan_tilt<false, false>(body, rb0, horizon, stop_above, options, summary);
 }
 
 double max_tilt(const Body& body, const InitialState& initial, double horizon, double stop_above,

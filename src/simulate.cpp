@@ -128,6 +128,19 @@ void validate_horizon(const Body& body, const InitialState& initial, double hori
                                         "motion to 1e-3 rad", longest));
 }
 
+void validate_damping(Model model, const Body& body, const SimulateOptions& options) {
+  const Damping& d = body.damping;
+  if (d.conservative()) return;
+  if (model == Model::LagrangeExact)
+    throw InvalidInput("model", "lagrange-exact is the conservative symmetric top: with damping use nonlinear");
+  if (model == Model::Nonlinear && options.integrator == Integrator::Splitting)
+    throw InvalidInput("integrator", "the splitting integrator is for the conservative body (its order is proven "
+                                     "for it only): with damping use adaptive");
+  if (linear_kind(model) && d.transverse > 0.0 && options.method == LinearMethod::Analytic)
+    throw InvalidInput("method", "the closed form covers the undamped linear models: with transverse damping "
+                                 "use numeric (the matrix exponential)");
+}
+
 namespace {
 
 /// Everything simulate() and simulate_streaming() do, over any stream of samples.
@@ -140,6 +153,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
     throw InvalidInput(why.substr(0, colon), colon == std::string::npos ? why : why.substr(colon + 2));
   }
   if (model == Model::LagrangeExact) validate_symmetric(body);
+  validate_damping(model, body, options);
   validate_horizon(body, initial, stream.count ? stream.time(stream.count - 1) : 0.0, time_key);
 
   SimulationSummary s;
@@ -154,6 +168,9 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
   try {
     if (const auto kind = linear_kind(model)) {
       s.solver = options.method == LinearMethod::Analytic ? "closed form" : "matrix exponential";
+      if (body.damping.axial > 0.0 || body.damping.friction > 0.0 || body.damping.driven)
+        s.warnings.push_back("the linear models hold the spin constant: only the transverse damping enters them "
+                             "(the axial damping, friction and motor act in nonlinear)");
       const LinearModel linear = linear_model(*kind, body);
       closed_form_in_chunks(samples, [&](const std::vector<double>& t) {
         return simulate_linear(linear, initial, t, options.method);

@@ -95,8 +95,10 @@ struct TiltExtremes {
   double t_min = 0.0;      ///< s, when
   double max_tilt = 0.0;   ///< rad, largest tilt seen
   double t_max = 0.0;      ///< s, when
-  double t_end = 0.0;      ///< s, end of the scan: the horizon, or where it stopped early
+  double t_end = 0.0;      ///< s, end of the scan: the horizon, or the first time the tilt
+                           ///< passed stop_above (located on the dense output)
   bool exceeded = false;   ///< true if the scan stopped early because max_tilt > stop_above
+  double spin_at_end = 0.0;  ///< rad/s, w.k at t_end (the integrated spin, damped or not)
 };
 
 /// The extremes of the tilt over [0, horizon] (s, finite, >= 0; key "horizon"). Interior

@@ -73,6 +73,11 @@ enum class Termination {
   Failure,  ///< a numerical failure (the solver could not go on); `message` says where and why
 };
 
+/// Throws InvalidInput unless `model` with `options` can integrate `body`'s damping (SPEC
+/// section 6): lagrange-exact (key "model") and the splitting integrator ("integrator") are
+/// for the conservative body, and the linear models' closed form ("method") for the undamped.
+void validate_damping(Model model, const Body& body, const SimulateOptions& options);
+
 /// The relative energy error of the splitting integrator above which simulate() warns that the
 /// step is too large for the motion (the integrator itself bounds it only as O(h^order)).
 inline constexpr double kSplittingEnergyWarning = 1e-3;

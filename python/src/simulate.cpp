@@ -44,7 +44,8 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
   if (!model) throw InvalidInput("model", "must be one of " + model_names(", "));
   const bool linear = linear_kind(*model).has_value(), nonlinear = *model == Model::Nonlinear;
   if (*model == Model::LagrangeExact) validate_symmetric(body);
-  const std::string how = method.value_or("analytic");
+  // Unasked, a damped linear model takes the route that covers it (the closed form does not).
+  const std::string how = method.value_or(body.damping.transverse > 0.0 ? "numeric" : "analytic");
   if (how != "analytic" && how != "numeric") throw InvalidInput("method", "must be analytic or numeric");
   require_positive("t_end", t_end);
   require_count("samples", samples, 2, 100'000'000);
