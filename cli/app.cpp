@@ -30,6 +30,7 @@ int run(int argc, char** argv) {
     actions[app.get_subcommands({}).at(before)] = std::move(action);
   };
   add(cli::add_stability_command);
+  add(cli::add_lifetime_command);
   add(cli::add_simulate_command);
   // derive lives in its own program, heavytop-derive, so that no other command pays for
   // loading the computer algebra (GiNaC, CLN, GMP) at start-up; listed here for --help.

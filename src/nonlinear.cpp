@@ -562,8 +562,9 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
 
   double rate_old = tilt_cos_rate(x0);
   State x;
-  while (integrator.time() < horizon) {
+  for (std::size_t steps = 1; integrator.time() < horizon; ++steps) {
     integrator.step();
+    if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(integrator.time(), horizon));
     const double t0 = integrator.previous_time();
     const double t1 = std::min(integrator.time(), horizon);
     integrator.interpolate(t1, x);

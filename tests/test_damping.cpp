@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "heavytop/damping.hpp"
+#include "heavytop/lifetime.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
@@ -186,7 +187,7 @@ TEST(SpinDecayLaw, SolvesItsDifferentialEquationAndStopsWhereFrictionStopsIt) {
       EXPECT_EQ(law.spin(w0, stop * (1 + 1e-12)), 0.0);
       EXPECT_GT(law.spin(w0, stop * (1 - 1e-6)), 0.0);
       EXPECT_NEAR(*law.time_to(w0, 0.0), stop, 1e-12 * stop);
-      if (da == 0.0) EXPECT_NEAR(stop, 2.0 * w0 / tau, 1e-12);  // t = C w0 / tau0
+      if (da == 0.0) { EXPECT_NEAR(stop, 2.0 * w0 / tau, 1e-12); }  // t = C w0 / tau0
     } else {
       EXPECT_FALSE(law.time_to(w0, 0.0));
       EXPECT_FALSE(law.stop_time(w0));
@@ -341,6 +342,64 @@ TEST(DampedNonlinear, TheIntegratorsThatCannotIncludeDampingRefuseIt) {
   SimulateOptions numeric;
   numeric.method = LinearMethod::Numeric;
   EXPECT_EQ(key_of(Model::Linearized, numeric), "accepted");
+}
+
+// ---- How long it stays up (SPEC section 8) ------------------------------------------------------
+
+// The toy top at 200 rad/s with axial damping 2e-7 N m s, 0.01 rad off vertical (issue 18).
+TEST(Lifetime, TheToyTopReachesItsCriticalSpinByTheLawAndFallsAfterIt) {
+  Body top = example_toy_top();
+  top.damping.axial = 2e-7;
+  InitialState s = example_motion();
+  s.theta0 = 0.01;
+  const Lifetime life = lifetime(top, s);
+  ASSERT_TRUE(life.critical_spin && life.time_to_critical && life.fall_time && life.fall_spin);
+  // The critical spin of the symmetric top, C^2 w^2 = 4 A m g R, and the law's time to it.
+  const double critical = 2.0 * std::sqrt(top.A * top.mgR()) / top.C;
+  EXPECT_NEAR(*life.critical_spin, critical, 1e-9 * critical);
+  const double expected = top.C / top.damping.axial * std::log(s.spin / *life.critical_spin);
+  EXPECT_NEAR(*life.time_to_critical, expected, 1e-12 * expected);
+  EXPECT_DOUBLE_EQ(life.horizon, 10.0 * *life.time_to_critical);
+  // It falls after the spin has passed the critical spin, and below it.
+  EXPECT_GT(*life.fall_time, *life.time_to_critical);
+  EXPECT_LT(*life.fall_spin, *life.critical_spin);
+  // The spin at the fall is the law's (A = B), and the fall is located on the dense output:
+  // a run sampled at that time has the threshold tilt there.
+  const SpinDecayLaw law{top.C, 2e-7, 0.0};
+  EXPECT_NEAR(*life.fall_spin, law.spin(s.spin, *life.fall_time), 1e-9 * s.spin);
+  const Trajectory tr = simulate(Model::Nonlinear, top, s, {0.0, *life.fall_time}).trajectory;
+  const Eigen::Vector3d k = test_support::axis_of(tr.theta[1], tr.phi[1]);
+  EXPECT_NEAR(std::acos(k.z()), life.max_tilt, 1e-9);
+  // Refining the tolerance moves the fall by less than 1e-6 relative.
+  LifetimeOptions finer;
+  finer.integrator.rtol = finer.integrator.atol = 1e-13;
+  LifetimeOptions coarser;
+  coarser.integrator.rtol = coarser.integrator.atol = 1e-10;
+  const double fine = *lifetime(top, s, finer).fall_time, coarse = *lifetime(top, s, coarser).fall_time;
+  EXPECT_LT(std::abs(fine - *life.fall_time), 1e-6 * fine);
+  EXPECT_LT(std::abs(coarse - fine), 1e-6 * fine);
+  RecordProperty("fall_time_s", test_support::sci(fine));
+}
+
+TEST(Lifetime, TheSpecialCasesOfSection8) {
+  Body top = example_toy_top();
+  InitialState s = example_motion();
+  top.damping.axial = 2e-7;
+  s.spin = 100.0;  // already below the critical spin
+  EXPECT_EQ(*spin_decay(top, s).time_to_critical, 0.0);
+  EXPECT_EQ(spin_decay(top, s).horizon, kDefaultLifetimeHorizon);
+  s.spin = 200.0;
+  top.damping.driven = true;  // the motor holds it: never
+  EXPECT_FALSE(spin_decay(top, s).time_to_critical);
+  top.damping = {};
+  top.length = -0.025;  // hanging: stable at every spin
+  EXPECT_EQ(*spin_decay(top, s).critical_spin, 0.0);
+  EXPECT_FALSE(spin_decay(top, s).time_to_critical);
+  top.length = 0.025;  // no damping: the spin never decays
+  EXPECT_FALSE(spin_decay(top, s).time_to_critical);
+  LifetimeOptions bad;
+  bad.max_tilt = 4.0;
+  EXPECT_THROW(spin_decay(top, s, bad), InvalidInput);
 }
 
 }  // namespace

@@ -189,6 +189,52 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
 }
 
 
+std::string lifetime_json(const Lifetime& life) {
+  Json out;
+  out["spin_decay"] = {{"critical_spin", optional_number(life.critical_spin)},
+                       {"time_to_critical", optional_number(life.time_to_critical)}};
+  out["fall"] = {{"time", optional_number(life.fall_time)}, {"spin", optional_number(life.fall_spin)},
+                 {"max_tilt", life.max_tilt}};
+  out["horizon"] = life.horizon;
+  return out.dump(2) + "\n";
+}
+
+namespace {
+std::string spin_text(double w) { return fmt::format("{:.6g} rad/s ({:.5g} rpm)", w, w * 30.0 / M_PI); }
+}  // namespace
+
+std::string lifetime_text(const Body& body, const InitialState& initial, const Lifetime& life) {
+  std::ostringstream out;
+  const Damping& d = body.damping;
+  out << fmt::format("Spin {} with axial damping d_a = {:g} N m s, friction tau0 = {:g} N m, transverse "
+                     "damping d_t = {:g} N m s{}.\n",
+                     spin_text(initial.spin), d.axial, d.friction, d.transverse,
+                     d.driven ? "; driven: a motor holds the spin" : "");
+  if (!life.critical_spin)
+    out << "Critical spin: none (no spin holds this body up, even without damping).\n";
+  else if (*life.critical_spin == 0.0)
+    out << "Critical spin: 0 (stable at every spin without damping).\n";
+  else if (d.driven)
+    out << fmt::format("The spin stays at {}: the motor holds it above the critical spin {}.\n", spin_text(initial.spin),
+                       spin_text(*life.critical_spin));
+  else if (!life.time_to_critical)
+    out << fmt::format("The spin never reaches the critical spin {} (nothing slows it).\n",
+                       spin_text(*life.critical_spin));
+  else if (*life.time_to_critical == 0.0)
+    out << fmt::format("The spin is already at or below the critical spin {}.\n", spin_text(*life.critical_spin));
+  else
+    out << fmt::format("The spin reaches the critical spin {} at t = {:.6g} s ({}).\n", spin_text(*life.critical_spin),
+                       *life.time_to_critical,
+                       life.law_exact ? "the closed-form spin law" : "the spin law, approximate for A != B");
+  if (life.fall_time)
+    out << fmt::format("The top falls (tilt past {:g} rad) at t = {:.6g} s, spinning at {}.\n", life.max_tilt,
+                       *life.fall_time, spin_text(*life.fall_spin));
+  else
+    out << fmt::format("The top does not fall within {:g} s (largest tilt {:.4g} rad, threshold {:g} rad).\n",
+                       life.horizon, life.largest_tilt, life.max_tilt);
+  return out.str();
+}
+
 std::string number(double value) {
   if (std::isnan(value)) return "nan";
   return fmt::format("{}", value);

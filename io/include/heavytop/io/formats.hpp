@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "heavytop/compare.hpp"
+#include "heavytop/lifetime.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
@@ -27,6 +28,12 @@ std::string stability_json(const Body& body, double spin, const std::vector<Mode
                            const LyapunovStability& lyapunov, const Wander& wander);
 std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models,
                            const LyapunovStability& lyapunov, const Wander& wander);
+
+/// `heavytop lifetime --format json` (SPEC section 8): {"spin_decay": {"critical_spin",
+/// "time_to_critical"}, "fall": {"time", "spin", "max_tilt"}, "horizon"}.
+std::string lifetime_json(const Lifetime& life);
+/// The same for people: one line for the spin reaching the critical spin, one for the fall.
+std::string lifetime_text(const Body& body, const InitialState& initial, const Lifetime& life);
 
 /// A number as JSON/CSV prints it: the shortest form that reads back to the same double.
 std::string number(double value);

@@ -1,0 +1,52 @@
+// heavytop lifetime: how long a top stays up (SPEC section 8): when its spin reaches the
+// critical spin (closed form) and when, spinning how fast, it falls (nonlinear, damped).
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "heavytop/io/formats.hpp"
+#include "heavytop/lifetime.hpp"
+
+namespace heavytop::cli {
+
+Action add_lifetime_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "lifetime", "How long the top stays up: its spin's decay to the critical spin and the fall of the "
+                  "damped nonlinear body");
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
+  auto options = std::make_shared<LifetimeOptions>();
+  auto horizon = std::make_shared<double>(0.0);
+  auto* horizon_option = cmd->add_option("--horizon", *horizon,
+                                         "s, the longest nonlinear run (default: 10 times the time to the "
+                                         "critical spin, or 1000)");
+  cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt past which the top has fallen")->default_str("1");
+  cmd->add_option("--rtol", options->integrator.rtol, "nonlinear: relative tolerance per step")
+      ->default_str(fmt::format("{}", options->integrator.rtol));
+  cmd->add_option("--atol", options->integrator.atol, "nonlinear: absolute tolerance per step")
+      ->default_str(fmt::format("{}", options->integrator.atol));
+  cmd->add_option("--max-steps", options->integrator.max_steps,
+                  "nonlinear: the most integration steps before it gives up");
+  return [inputs, options, horizon, horizon_option] {
+    inputs->resolve();
+    LifetimeOptions o = *options;
+    if (horizon_option->count()) o.horizon = *horizon;
+    if (std::string why; !o.IsValid(&why)) {
+      const auto colon = why.find(": ");
+      throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
+    }
+    const Lifetime life = [&] {
+      ProgressBar bar("lifetime", spin_decay(inputs->body(), inputs->state(), o).horizon);
+      o.integrator.progress = [&bar](double t) { bar.update(t); };
+      return lifetime(inputs->body(), inputs->state(), o);
+    }();
+    write_output(inputs->output(), inputs->format() == "json"
+                                       ? io::lifetime_json(life)
+                                       : io::lifetime_text(inputs->body(), inputs->state(), life));
+  };
+}
+
+}  // namespace heavytop::cli
