@@ -161,6 +161,57 @@ import csv
 a = list(csv.reader(open("split.csv"))); b = list(csv.reader(open("exact.csv")))
 assert a[0][5:] == ["energy", "vertical_momentum", "axial_momentum", "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"]
 assert max(abs(float(x) - float(y)) for ra, rb in zip(a[1:], b[1:]) for x, y in zip(ra[1:3], rb[1:3])) < 1e-9'
+# Damping and friction (SPEC 6) and the lifetime (SPEC 8).
+for cmd in stability simulate lifetime; do
+  check "$cmd transverse damping >= 0" refused damping.transverse $cmd --config ok.toml --transverse-damping -1
+  check "$cmd axial damping finite" refused damping.axial $cmd --config ok.toml --axial-damping nan
+  check "$cmd friction >= 0" refused damping.friction $cmd --config ok.toml --friction -0.1
+done
+{ cat ok.toml; printf '[damping]\naxial = -2e-7\n'; } > neg_damping.toml
+check "damping key in the file" refused damping.axial stability --config neg_damping.toml
+{ cat ok.toml; printf 'driven = 1\n'; } > bad_driven.toml
+check "driven must be a boolean" refused motion.driven stability --config bad_driven.toml
+{ cat ok.toml; printf '[damping]\ndrag = 1\n'; } > unknown_damping.toml
+check "unknown damping key" refused damping.drag stability --config unknown_damping.toml
+check "splitting refuses damping" refused --integrator simulate --config ok.toml --model nonlinear --integrator splitting --axial-damping 0.1
+check "lagrange-exact refuses damping" refused --model simulate --config ok.toml --model lagrange-exact --friction 0.1
+check "the closed form refuses drag" refused --method simulate --config ok.toml --model first-order --method analytic --transverse-damping 0.1
+check "lifetime max-tilt in (0, pi]" refused --max-tilt lifetime --config ok.toml --max-tilt 4
+check "lifetime horizon > 0" refused --horizon lifetime --config ok.toml --horizon -1
+"$H" stability --transverse-damping 1e-6 --format json > damped.json
+check "damped stability: growth rates, KTC (no stable spin), the damping object" python3 - damped.json <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["damping"] == {"transverse": 1e-6, "axial": 0.0, "friction": 0.0, "driven": False}, d["damping"]
+for name, m in d["models"].items():
+    assert not m["stable"] and m["growth_rate"] > 0 and m["stable_spin_intervals"] == [] and m["critical_spin"] is None, (name, m)
+    assert abs(m["growth_rate"] - max(e[0] for e in m["eigenvalues"])) <= 1e-15
+PY
+"$H" stability --format json > undamped.json
+check "undamped stability: growth_rate 0 when stable, no damping object" python3 -c '
+import json; d = json.load(open("undamped.json")); assert "damping" not in d
+assert all(m["growth_rate"] == 0 for m in d["models"].values() if m["stable"])'
+"$H" lifetime --axial-damping 2e-7 --theta0 0.01 --format json > life.json
+"$H" lifetime --axial-damping 2e-7 --theta0 0.01 > life.txt
+check "lifetime json: the toy top's time to critical by the law, the fall after it" python3 - life.json <<'PY'
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+C, A, mgR, w0 = 1.2e-5, 4.35e-5, 0.06 * 9.81 * 0.025, 200.0
+wc = 2 * math.sqrt(A * mgR) / C
+assert abs(d["spin_decay"]["critical_spin"] - wc) < 1e-9 * wc
+t = C / 2e-7 * math.log(w0 / wc)
+assert abs(d["spin_decay"]["time_to_critical"] - t) < 1e-12 * t
+assert d["horizon"] == 10 * d["spin_decay"]["time_to_critical"]
+f = d["fall"]
+assert f["max_tilt"] == 1.0 and f["time"] > t and f["spin"] < wc
+assert abs(f["spin"] - w0 * math.exp(-2e-7 * f["time"] / C)) < 1e-9 * w0
+PY
+check "lifetime text: one line for the critical spin, one for the fall" bash -c "grep -c 'reaches the critical spin 133.344 rad/s' life.txt | grep -qx 1 && grep -q 'The top falls (tilt past 1 rad) at t = ' life.txt"
+"$H" simulate --model nonlinear --driven true --axial-damping 1e-7 --transverse-damping 1e-7 --t-end 2 --samples 3 > driven.csv
+check "driven: the motor_torque column, the spin held" python3 -c '
+import csv; r = list(csv.reader(open("driven.csv"))); h = r[0]
+assert h[-4:] == ["dissipated_work", "vertical_momentum_loss", "axial_momentum_loss", "motor_torque"], h
+assert all(abs(float(x[h.index("motor_torque")]) - 2e-5) < 1e-18 for x in r[1:])'
 check "no temporary files left" test -z "$(ls -A | grep tmp)"
 
 finish
