@@ -10,7 +10,8 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import Body
-from .results import Comparison, Derivation, DerivationCheck, Rotations, Stability, StabilityMap, Trajectory
+from .results import (Comparison, Derivation, DerivationCheck, Lifetime, Rotations, Stability, StabilityMap,
+                      Trajectory)
 from .results import SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotations", "derive_check"]
@@ -230,3 +231,29 @@ def derive_check(order: Optional[Literal[1, 2]] = None) -> DerivationCheck:
     .all_as_expected; as a Mapping, json.loads of `heavytop derive --check --format json`.
     """
     return DerivationCheck.from_json(_core.derive_check(order))
+
+
+def lifetime(body: Body, *, spin: float, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
+             phi_rate0: float = 0.0, horizon: Optional[float] = None, max_tilt: float = 1.0,
+             rtol: Optional[float] = None, atol: Optional[float] = None,
+             max_steps: Optional[int] = None) -> Lifetime:
+    """How long the top stays up (SPEC section 8), with the body's damping (Body(...,
+    transverse_damping=, axial_damping=, friction=, driven=)).
+
+        spin, theta0, phi0, theta_rate0, phi_rate0
+                     rad/s, rad: the initial state (SPEC section 2)
+        horizon      s, > 0: the longest nonlinear run; None: 10 times the time to the
+                     critical spin (1000 s when that is None or 0)
+        max_tilt     rad, in (0, pi]: the tilt from the upward vertical past which it has fallen
+        rtol, atol, max_steps
+                     the nonlinear integrator's settings (None: the command line's defaults)
+
+    Returns a Lifetime: .critical_spin (rad/s, the linearized model's without damping; None
+    if no spin holds it up), .time_to_critical (s, by the closed-form spin law C w' = -d_a w
+    - tau0 sign(w); 0 if already below; None if never), .fall_time (s) and .fall_spin (rad/s,
+    the integrated w.k) or None if it does not fall within .horizon, .max_tilt. As a Mapping
+    it is json.loads of `heavytop lifetime --format json`. Ctrl-C stops it.
+    """
+    return Lifetime.from_json(_core.lifetime(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                                             phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
+                                             atol=atol, max_steps=max_steps))

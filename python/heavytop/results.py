@@ -71,7 +71,8 @@ class ModelStability(JsonResult):
     """One linear model's stability at the spin asked (SPEC section 3)."""
 
     stable: bool
-    """Every eigenvalue has zero real part and every multiple one is semisimple."""
+    """Every eigenvalue has real part <= 0 and those on the imaginary axis are semisimple
+    (without damping every real part is then 0)."""
     critical_spin: Optional[float]
     """rad/s, the lo of the unbounded stable interval; 0 when stable at every spin, None when
     no spin stabilises the model."""
@@ -81,6 +82,9 @@ class ModelStability(JsonResult):
     """1/s, the four eigenvalues (the linearized model's are those of its body-frame system)."""
     frequencies: Tuple[float, ...]
     """rad/s, the distinct |Im| of the eigenvalues, ascending; empty unless stable."""
+    growth_rate: float
+    """1/s, the largest real part of the eigenvalues: > 0, the motion grows like
+    exp(growth_rate t); < 0 (damped), it decays; 0, neither."""
     reason: str
     """Why, in a few words for a person."""
     _data: Dict[str, Any] = field(repr=False)
@@ -90,7 +94,8 @@ class ModelStability(JsonResult):
         return cls(stable=data["stable"], critical_spin=data["critical_spin"],
                    stable_spin_intervals=tuple((lo, hi) for lo, hi in data["stable_spin_intervals"]),
                    eigenvalues=tuple(complex(re, im) for re, im in data["eigenvalues"]),
-                   frequencies=tuple(data.get("frequencies", ())), reason=data.get("reason", ""), _data=data)
+                   frequencies=tuple(data.get("frequencies", ())), growth_rate=data["growth_rate"],
+                   reason=data.get("reason", ""), _data=data)
 
 
 @dataclass(frozen=True, eq=False)
@@ -137,6 +142,33 @@ class Wander(JsonResult):
     def from_json(cls, data: Dict[str, Any]) -> "Wander":
         return cls(max_tilt=data["max_tilt"], method=data["method"], horizon=data["horizon"],
                    note=data.get("note", ""), _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Lifetime(JsonResult):
+    """How long the top stays up: `heavytop lifetime --format json` (SPEC section 8)."""
+
+    critical_spin: Optional[float]
+    """rad/s, the linearized model's critical spin without damping (None: no spin holds it up)."""
+    time_to_critical: Optional[float]
+    """s, when the closed-form spin law brings the spin down to the critical spin (0: already
+    below; None: never, driven, or stable at every spin)."""
+    fall_time: Optional[float]
+    """s, the first time the nonlinear body's tilt passes max_tilt; None within the horizon."""
+    fall_spin: Optional[float]
+    """rad/s, the integrated spin w.k at the fall (None with fall_time)."""
+    max_tilt: float
+    """rad, the fall's threshold."""
+    horizon: float
+    """s, the nonlinear run's horizon."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Lifetime":
+        decay, fall = data["spin_decay"], data["fall"]
+        return cls(critical_spin=decay["critical_spin"], time_to_critical=decay["time_to_critical"],
+                   fall_time=fall["time"], fall_spin=fall["spin"], max_tilt=fall["max_tilt"],
+                   horizon=data["horizon"], _data=data)
 
 
 @dataclass(frozen=True, eq=False)

@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "docs.hpp"
 #include "heavytop/compare.hpp"
+#include "heavytop/lifetime.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/lyapunov.hpp"
@@ -45,9 +46,26 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
   }));
 }
 
+py::object lifetime(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
+                    double phi_rate0, std::optional<double> horizon, double max_tilt, std::optional<double> rtol,
+                    std::optional<double> atol, std::optional<long long> max_steps) {
+  validate(body);
+  const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
+  LifetimeOptions options;
+  options.horizon = horizon;
+  options.max_tilt = max_tilt;
+  options.integrator = tolerances(rtol, atol);
+  if (max_steps) options.integrator.max_steps = static_cast<std::size_t>(std::max(0LL, *max_steps));
+  options.integrator.progress = poll_signals();
+  return from_json(without_gil([&] { return io::lifetime_json(heavytop::lifetime(body, state, options)); }));
+}
+
 }  // namespace
 
 void bind_analyses(py::module_& m) {
+  m.def("lifetime", &lifetime, docs::kCoreLifetime, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
+        "theta_rate0"_a, "phi_rate0"_a, "horizon"_a = py::none(), "max_tilt"_a = 1.0, "rtol"_a = py::none(),
+        "atol"_a = py::none(), "max_steps"_a = py::none());
   m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a, py::kw_only(), "theta0"_a = 0.0,
         "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0);
   m.def("compare", &compare, docs::kCoreCompare, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,

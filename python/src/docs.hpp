@@ -37,7 +37,11 @@ C: kg m^2, moment of inertia about the spin axis z through O
 mass: kg
 length: m, R: signed distance from O to the centre of mass along z (> 0: a top on its tip,
         < 0: a hanging gyroscope)
-gravity: m/s^2, g (default 9.81), acting along -zeta)doc";
+gravity: m/s^2, g (default 9.81), acting along -zeta
+transverse_damping, axial_damping: N m s, d_t, d_a (>= 0, default 0): the drag torques
+        -d_t w_perp and -d_a (w.k) k (SPEC section 6)
+friction: N m, tau0 (>= 0, default 0): dry friction at the tip, -tau0 sign(w.k) k
+driven: True: a motor holds the spin w.k at its value at t = 0 (a gyroscope))doc";
 
 constexpr const char* kExampleToyTop =
     "The built-in example (the command line's base without --config): a wooden toy top, 60 g,\n"
@@ -46,6 +50,9 @@ constexpr const char* kExampleToyTop =
 constexpr const char* kExampleMotion =
     "The built-in example's motion as keyword arguments: spin 200 rad/s, theta0 0.05 rad, the\n"
     "rest 0. E.g. heavytop.simulate(heavytop.example_toy_top(), **heavytop.example_motion()).";
+
+constexpr const char* kCoreLifetime = R"doc(heavytop.lifetime without defaults: json.loads of `heavytop lifetime --format json`.
+)doc";
 
 constexpr const char* kGridValues = R"doc(The values of the command line's --vary KEY=START:STOP:COUNT, bit for bit:
 start + i (stop - start) / (count - 1), i = 0..count-1 (float64 array). Pass them to sweep()
