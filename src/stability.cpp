@@ -152,6 +152,23 @@ bool vanishes(const Eigen::Matrix4d& residual) {
   return residual.cwiseAbs().maxCoeff() <= kSemisimple;
 }
 
+/// Real part ascending, then imaginary part: the order every verdict reports.
+void sort_eigenvalues(std::vector<std::complex<double>>& eigenvalues) {
+  std::sort(eigenvalues.begin(), eigenvalues.end(), [](auto x, auto y) {
+    return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();
+  });
+}
+
+/// rad/s, the distinct |Im| of `eigenvalues`, ascending (1e-12 relative counts as equal).
+std::vector<double> distinct_frequencies(const std::vector<std::complex<double>>& eigenvalues) {
+  std::vector<double> f;
+  for (const auto& l : eigenvalues) f.push_back(std::abs(l.imag()));
+  std::sort(f.begin(), f.end());
+  f.erase(std::unique(f.begin(), f.end(), [](double x, double y) { return std::abs(x - y) <= 1e-12 * std::max(x, y); }),
+          f.end());
+  return f;
+}
+
 /// The eigenvalues of the damped model at `spin`, from the balanced system matrix (Eigen's
 /// Hessenberg QR), each polished by Newton's method on the quartic; sorted like the undamped.
 std::vector<std::complex<double>> damped_eigenvalues(const LinearModel& model, double spin,
@@ -174,9 +191,7 @@ std::vector<std::complex<double>> damped_eigenvalues(const LinearModel& model, d
     }
     roots.push_back(l + 0.0);
   }
-  std::sort(roots.begin(), roots.end(), [](auto x, auto y) {
-    return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();
-  });
+  sort_eigenvalues(roots);
   return roots;
 }
 
@@ -239,14 +254,7 @@ StabilityVerdict damped_stability(const LinearModel& model, double spin) {
                           : "on the damped stability boundary with a Jordan block: the axis drifts";
     if (semisimple) v.growth_rate = std::min(v.growth_rate, 0.0);
   }
-  if (v.stable)
-    for (const auto& l : v.eigenvalues) v.frequencies.push_back(std::abs(l.imag()));
-  std::sort(v.frequencies.begin(), v.frequencies.end());
-  v.frequencies.erase(std::unique(v.frequencies.begin(), v.frequencies.end(),
-                                  [](double x, double y) {
-                                    return std::abs(x - y) <= 1e-12 * std::max(x, y);
-                                  }),
-                      v.frequencies.end());
+  if (v.stable) v.frequencies = distinct_frequencies(v.eigenvalues);
   return v;
 }
 
@@ -281,9 +289,7 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
     v.eigenvalues.push_back(-r + 0.0);  // + 0.0: no negative zeros in reports
     v.eigenvalues.push_back(r + 0.0);
   }
-  std::sort(v.eigenvalues.begin(), v.eigenvalues.end(), [](auto x, auto y) {
-    return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag();
-  });
+  sort_eigenvalues(v.eigenvalues);
   v.growth_rate = v.eigenvalues.back().real();
 
   const bool oscillatory = mu1.imag() == 0.0 && mu2.imag() == 0.0 && mu1.real() <= 0.0 &&
@@ -321,13 +327,7 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
     v.reason = "two distinct frequencies";
   }
   v.stable = true;
-  for (const auto& l : v.eigenvalues) v.frequencies.push_back(std::abs(l.imag()));
-  std::sort(v.frequencies.begin(), v.frequencies.end());
-  v.frequencies.erase(std::unique(v.frequencies.begin(), v.frequencies.end(),
-                                  [](double x, double y) {
-                                    return std::abs(x - y) <= 1e-12 * std::max(x, y);
-                                  }),
-                      v.frequencies.end());
+  v.frequencies = distinct_frequencies(v.eigenvalues);
   return v;
 }
 
