@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "heavytop/units.hpp"
+
 namespace heavytop::io {
 namespace {
 
@@ -107,6 +109,12 @@ std::string linear_stability_text(const Body& body, double spin, const std::vect
                        r.critical ? fmt::format("{:.6g}", *r.critical) : "none",
                        intervals_text(r.intervals), r.verdict.reason);
   }
+  // SPEC section 9: text gives spins in rpm too.
+  std::string rpm;
+  for (const auto& r : models)
+    rpm += fmt::format("{}{} {}", rpm.empty() ? "" : ", ", name(r.kind),
+                       r.critical ? fmt::format("{:.6g}", rpm_from_rad_per_s(*r.critical)) : "none");
+  out << "critical spins in rpm: " << rpm << "\n";
   out << "\n(first-order: the paper's model (4), (9); body-fixed: its model (5), which the paper "
          "itself calls erroneous; linearized: the exact linearisation, the one to trust.)\n";
   const auto& paper = models[0];
