@@ -50,7 +50,12 @@ std::string shown(std::string path) {
 TriangleMesh read_mesh(const std::string& path, double scale, const std::string& key) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InvalidInput(key, fmt::format("cannot read '{}': no such file", shown(path)));
+  if (!fs::exists(path, ec)) throw InvalidInput(key, fmt::format("cannot read '{}': no such file", shown(path)));
+  if (!fs::is_regular_file(path, ec))
+    throw InvalidInput(key, fmt::format("cannot read '{}': not a regular file", shown(path)));
+  // Assimp holds the whole file and its mesh in memory: a larger file is not a top's mesh.
+  if (fs::file_size(path, ec) > kMaxMeshBytes)
+    throw InvalidInput(key, fmt::format("'{}' is larger than {} bytes: too large a mesh", shown(path), kMaxMeshBytes));
   const Assimp& lib = assimp();
   if (!lib.loaded)
     throw InvalidInput(key, fmt::format("cannot read meshes: the Assimp library ({}) is not installed "

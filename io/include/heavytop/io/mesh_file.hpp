@@ -10,10 +10,14 @@
 
 namespace heavytop::io {
 
+/// The largest mesh file read_mesh() reads (bytes): 1 GiB, some 20 million triangles of binary STL.
+inline constexpr unsigned long long kMaxMeshBytes = 1ull << 30;
+
 /// The triangles of every mesh in `path` (node transforms applied, polygons triangulated),
 /// coordinates multiplied by `scale` (m per unit of the file). Throws InvalidInput naming
 /// `key` (e.g. "body.part[1] (top.stl)") when the file is missing, cannot be read as a mesh, or
-/// holds no triangles, and when Assimp cannot be loaded.
+/// holds no triangles, is not a regular file or is larger than kMaxMeshBytes, and when
+/// Assimp cannot be loaded.
 TriangleMesh read_mesh(const std::string& path, double scale, const std::string& key);
 
 }  // namespace heavytop::io
