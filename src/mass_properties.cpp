@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <tuple>
 
@@ -102,17 +101,31 @@ MassProperties mass_properties(const SolidPart& part, const std::string& key) {
 
 MeshDefects mesh_defects(const TriangleMesh& mesh) {
   MeshDefects d;
-  // Vertices merged by exact position: STL repeats them per triangle, bit for bit.
-  std::map<std::tuple<double, double, double>, std::uint32_t> ids;
-  std::vector<std::uint32_t> id(mesh.vertices.size());
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+  // Vertices merged by exact position (STL repeats them per triangle, bit for bit): sorted by
+  // their coordinates, equal runs share an id. Sorting beats a tree or a hash here.
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<std::uint32_t> order(nv), id(nv);
+  for (std::size_t i = 0; i < nv; ++i) order[i] = static_cast<std::uint32_t>(i);
+  auto key = [&](std::uint32_t i) {
     const auto& v = mesh.vertices[i];
-    id[i] = ids.try_emplace({v.x(), v.y(), v.z()}, static_cast<std::uint32_t>(ids.size())).first->second;
+    return std::tuple(v.x(), v.y(), v.z());
+  };
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return key(a) < key(b); });
+  for (std::size_t r = 0, next = 0; r < nv; ++r) {
+    if (r > 0 && key(order[r]) != key(order[r - 1])) ++next;
+    id[order[r]] = static_cast<std::uint32_t>(next);
   }
-  // Each undirected edge: how many triangles run it low -> high and high -> low.
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> edges;
+  // Each directed edge as (low, high, runs low -> high?), sorted: an undirected edge's uses are
+  // then one run, which must be exactly one of each direction.
+  struct Edge {
+    std::uint32_t lo, hi;
+    bool up;
+    bool operator<(const Edge& o) const { return std::tie(lo, hi, up) < std::tie(o.lo, o.hi, o.up); }
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
-    if (t[0] >= id.size() || t[1] >= id.size() || t[2] >= id.size()) {
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv) {
       ++d.degenerate_triangles;
       continue;
     }
@@ -123,15 +136,18 @@ MeshDefects mesh_defects(const TriangleMesh& mesh) {
     }
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = v[k], b = v[(k + 1) % 3];
-      auto& e = edges[{std::min(a, b), std::max(a, b)}];
-      (a < b ? e.first : e.second) += 1;
+      edges.push_back({std::min(a, b), std::max(a, b), a < b});
     }
   }
-  for (const auto& [edge, uses] : edges) {
-    const int total = uses.first + uses.second;
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i, up = 0;
+    for (; j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi; ++j) up += edges[j].up;
+    const std::size_t total = j - i;
     if (total == 1) ++d.open_edges;
     else if (total > 2) ++d.nonmanifold_edges;
-    else if (uses.first != 1) ++d.misoriented_edges;
+    else if (up != 1) ++d.misoriented_edges;
+    i = j;
   }
   return d;
 }
