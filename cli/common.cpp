@@ -84,7 +84,7 @@ void Inputs::resolve(bool allow_general) {
     if (config_.parts.empty())
       for (const std::string& key : io::required_body_keys())
         if (!config_.given.count(key) && !overrides_.at(key).option->count())
-          throw InvalidInput(key, fmt::format("is required in [body] (or give --{}, or the body's [[body.part]])",
+          throw InvalidInput(key, fmt::format("is required in [body] (or give --{}), unless [[body.part]] describe the body",
                                               key.substr(key.find('.') + 1)));
   }
   if (spin_rpm_.option->count()) {

@@ -153,7 +153,9 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   out << fmt::format("  energy index {} (s1 = {:.6g}, s2 = {:.6g} N m); proven stable for spins (rad/s): {}; "
                      "superfast {}\n",
                      v.energy_index, v.s1, v.s2, intervals_text(lyapunov.intervals),
-                     lyapunov.superfast ? fmt::format("from {:.6g} rad/s", *lyapunov.superfast) : "at no spin");
+                     lyapunov.superfast ? fmt::format("from {:.6g} rad/s ({:.6g} rpm)", *lyapunov.superfast,
+                                                        rpm_from_rad_per_s(*lyapunov.superfast))
+                                       : "at no spin");
   if (v.certificate == LyapunovCertificate::CriticalQuartic)
     out << "  At the boundary of (9) the linear models grow (a Jordan block, erratum E2), but the real "
            "symmetric top does not: started delta off vertical its tilt stays below about sqrt(2 delta).\n";
