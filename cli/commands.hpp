@@ -22,5 +22,7 @@ Action add_compare_command(CLI::App& app);
 Action add_sweep_command(CLI::App& app);
 Action add_report_command(CLI::App& app);
 Action add_lifetime_command(CLI::App& app);
+Action add_body_command(CLI::App& app);
+Action add_precession_command(CLI::App& app);
 
 }  // namespace heavytop::cli

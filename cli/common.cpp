@@ -13,6 +13,8 @@
 
 #include <fmt/format.h>
 
+#include "heavytop/units.hpp"
+
 extern char** environ;
 
 namespace heavytop::cli {
@@ -52,8 +54,8 @@ std::string flag_of(const std::string& field) {
   static const std::map<std::string, std::string> flags = {
       {"rtol", "--rtol"}, {"atol", "--atol"},       {"max_steps", "--max-steps"}, {"step", "--step"},
       {"order", "--order"}, {"horizon", "--horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
-      {"t_end", "--t-end"}, {"times", "--t-end"}, {"model", "--model"}, {"method", "--method"},
-      {"integrator", "--integrator"},
+      {"t_end", "--t-end"}, {"times", "--t-end"}, {"tilt", "--tilt"}, {"model", "--model"},
+      {"method", "--method"}, {"integrator", "--integrator"},
   };
   auto it = flags.find(field);
   return it == flags.end() ? field : it->second;
@@ -74,28 +76,67 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(fo
                 ->type_name("BOOL")
                 ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
                 ->group("Damping");
+  spin_rpm_.option = command.add_option("--spin-rpm,--spin_rpm", spin_rpm_.value, "rpm, spin w0 (instead of --spin)")
+                         ->type_name("NUM")
+                         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                         ->group("Motion");
   command.add_option("--format", format_, "output format")
       ->check(CLI::IsMember(formats))
       ->default_str(formats.front());
   command.add_option("--output", output_, "write to FILE instead of stdout")->type_name("FILE");
 }
 
-void Inputs::resolve() {
+void Inputs::resolve(bool allow_general) {
   Body body = example_toy_top();
   InitialState state = example_motion();
   if (!config_path_.empty()) {
     config_ = io::read_configuration(config_path_, "--config");
     body = config_.body;
     state = config_.motion;
-    // Every required body key from the file or the command line.
-    for (const std::string& key : io::required_body_keys())
-      if (!config_.given.count(key) && !overrides_.at(key).option->count())
-        throw InvalidInput(key, fmt::format("is required in [body] (or give --{})",
-                                            key.substr(key.find('.') + 1)));
+    // Every required body key from the file or the command line (the parts give them all).
+    if (config_.parts.empty())
+      for (const std::string& key : io::required_body_keys())
+        if (!config_.given.count(key) && !overrides_.at(key).option->count())
+          throw InvalidInput(key, fmt::format("is required in [body] (or give --{}), unless [[body.part]] describe the body",
+                                              key.substr(key.find('.') + 1)));
   }
-  for (auto& [key, o] : overrides_)
-    if (o.option->count()) *io::config_field(body, state, key) = o.value;
+  if (spin_rpm_.option->count()) {
+    if (overrides_.at("motion.spin").option->count())
+      throw InvalidInput("--spin-rpm", "give --spin or --spin-rpm, not both");
+    state.spin = rad_per_s_from_rpm(spin_rpm_.value);
+  }
+  for (auto& [key, o] : overrides_) {
+    if (!o.option->count()) continue;
+    if (!config_.parts.empty() && key.starts_with("body.") && key != "body.gravity")
+      throw InvalidInput(o.option->get_name(), "the body is made of parts in --config: A, B, C, mass and length "
+                                               "come from them");
+    *io::config_field(body, state, key) = o.value;
+  }
   if (driven_->count()) body.damping.driven = driven_value_;
+  const Damping damping = body.damping;  // the parts below make the body's mass properties only
+  if (!config_.parts.empty()) {
+    assembly_ = io::assemble_parts(config_.parts);
+    if (!allow_general) {
+      const double gravity = body.gravity;
+      body = body_of(assembly_.assembly, gravity, assembly_.names);
+    } else {  // `body` reports it: the moments as they are
+      body.A = assembly_.assembly.A;
+      body.B = assembly_.assembly.B;
+      body.C = assembly_.assembly.C;
+      body.mass = assembly_.assembly.total.mass;
+      body.length = assembly_.assembly.length;
+    }
+  } else {
+    validate(body);
+    assembly_ = io::assemble_moments(body, config_.general);
+    for (const auto& [key, value] : config_.general)
+      if (value != 0.0 && !allow_general)
+        throw InvalidInput(key, fmt::format("is {:g}: the general body (SPEC section 11: the centre of mass off "
+                                            "the z axis, products of inertia) is not yet integrated by any model "
+                                            "(`heavytop body` reports it)",
+                                            value));
+  }
+  body.damping = damping;
   validate(body);
   validate(state);
   body_ = body;

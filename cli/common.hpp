@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "heavytop/body.hpp"
+#include "heavytop/io/body_parts.hpp"
 #include "heavytop/io/config.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/state.hpp"
@@ -46,7 +47,11 @@ class Inputs {
 
   /// Loads --config (if any), applies the options over it and validates. Throws InvalidInput.
   /// Without --config the base is the built-in example (a toy top), so options alone work.
-  void resolve();
+  /// A body made of parts (SPEC section 10) is assembled (meshes read); a general body (the
+  /// centre of mass off z, products of inertia; SPEC section 11) is refused naming the part or
+  /// the key unless `allow_general` (`heavytop body`, which only reports it): no model
+  /// integrates it yet.
+  void resolve(bool allow_general = false);
 
   const Body& body() const { return body_; }
   const InitialState& state() const { return state_; }
@@ -54,6 +59,9 @@ class Inputs {
   const std::string& output() const { return output_; }
   /// The configuration file's further sections (empty without --config).
   const io::Configuration& configuration() const { return config_; }
+  /// The body as mass properties: its parts (or its moments) summed, with the general body's
+  /// products and offset (after resolve()).
+  const io::AssembledBody& assembly() const { return assembly_; }
 
  private:
   struct Override {
@@ -66,6 +74,8 @@ class Inputs {
   std::map<std::string, Override> overrides_;  // "body.A", "motion.spin", ...
   CLI::Option* driven_ = nullptr;              // --driven (motion.driven, a boolean)
   bool driven_value_ = false;
+  Override spin_rpm_;                           // --spin-rpm (SPEC section 9)
+  io::AssembledBody assembly_;
   io::Configuration config_;
   Body body_;
   InitialState state_;

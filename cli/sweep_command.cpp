@@ -52,7 +52,7 @@ Action add_sweep_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("sweep", "A stability map: each model's verdict over a grid of one or two parameters");
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv"});
   auto s = std::make_shared<SweepSettings>();
-  cmd->add_option("--vary", s->vary, "KEY=START:STOP:COUNT, KEY a body key, spin, B/A or C/A (once or twice)")
+  cmd->add_option("--vary", s->vary, "KEY=START:STOP:COUNT, KEY a body key, spin, spin_rpm (rpm; the CSV keeps spin in rad/s), B/A or C/A (once or twice)")
       ->required()
       ->expected(1, 2)
       ->take_all();

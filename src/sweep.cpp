@@ -14,11 +14,12 @@
 #include <fmt/format.h>
 
 #include "heavytop/stability.hpp"
+#include "heavytop/units.hpp"
 
 namespace heavytop {
 namespace {
 
-constexpr std::string_view kKeys[] = {"A", "B", "C", "mass", "gravity", "length", "spin", "B/A", "C/A"};
+constexpr std::string_view kKeys[] = {"A", "B", "C", "mass", "gravity", "length", "spin", "spin_rpm", "B/A", "C/A"};
 
 double parse_number(std::string_view text, const char* what) {
   double value = 0.0;
@@ -37,7 +38,7 @@ double SweepAxis::value(std::size_t i) const {
 
 SweepAxis parse_sweep_axis(std::string_view text) {
   const auto eq = text.find('=');
-  const std::string_view rule = "must be KEY=START:STOP:COUNT with KEY one of A, B, C, mass, gravity, length, spin, B/A, C/A";
+  const std::string_view rule = "must be KEY=START:STOP:COUNT with KEY one of A, B, C, mass, gravity, length, spin, spin_rpm, B/A, C/A";
   if (eq == std::string_view::npos) throw InvalidInput("vary", std::string(rule));
   SweepAxis axis;
   axis.key = std::string(text.substr(0, eq));
@@ -54,6 +55,11 @@ SweepAxis parse_sweep_axis(std::string_view text) {
   if (error != std::errc() || end != count.data() + count.size() || n < 1 || n > 100'000'000)
     throw InvalidInput("vary", fmt::format("COUNT '{}' must be an integer in [1, 100000000]", count));
   axis.count = static_cast<std::size_t>(n);
+  if (axis.key == "spin_rpm") {  // SPEC section 9: the grid in rpm, the sweep (and its CSV) in rad/s
+    axis.key = "spin";
+    axis.start = rad_per_s_from_rpm(axis.start);
+    axis.stop = rad_per_s_from_rpm(axis.stop);
+  }
   return axis;
 }
 

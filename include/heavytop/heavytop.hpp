@@ -24,3 +24,6 @@
 #include "heavytop/sweep.hpp"           // sweeps across machines
 #include "heavytop/simulate.hpp"        // simulate(Model, ...): one entry point for every model
 #include "heavytop/rigid_body.hpp"      // RigidBodySystem for odeint-style steppers
+#include "heavytop/mass_properties.hpp" // a body from its parts or a mesh (SPEC section 10)
+#include "heavytop/precession.hpp"      // steady precessions and permanent rotations at a tilt
+#include "heavytop/units.hpp"           // rpm (SPEC section 9)

@@ -34,6 +34,7 @@ struct SweepAxis {
 inline constexpr std::size_t kMaxSweepPoints = 100'000'000;
 
 /// Parses "KEY=START:STOP:COUNT". Throws InvalidInput (key "vary") naming the rule broken.
+/// KEY "spin_rpm" gives the axis "spin" with START and STOP converted to rad/s (SPEC section 9).
 SweepAxis parse_sweep_axis(std::string_view text);
 
 /// The number of grid points: the product of the axes' counts.

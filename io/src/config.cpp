@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "heavytop/units.hpp"
+
 namespace heavytop::io {
 namespace {
 
@@ -65,7 +67,92 @@ double number_of(const toml::node& node, const std::string& key) {
   throw InvalidInput(key, "must be a number");
 }
 
+// The keys of a [[body.part]], and the shapes each applies to (SPEC section 10).
+struct PartKey {
+  const char* name;
+  const char* shapes;  // the shapes it applies to, as they are named, or "" for every shape
+};
+constexpr PartKey kPartKeys[] = {
+    {"shape", ""},           {"radius", "cylinder tube cone sphere"}, {"inner_radius", "tube"},
+    {"height", "cylinder tube cone"}, {"z0", "cylinder tube cone sphere"}, {"apex", "cone"},
+    {"density", ""},         {"mass", ""},          {"file", "mesh"},  {"units", "mesh"},
+};
+
+std::string string_of(const toml::node& node, const std::string& key) {
+  if (auto v = node.value_exact<std::string>()) return *v;
+  throw InvalidInput(key, "must be a string");
+}
+
+PartSpec parse_part(const toml::table& table, std::size_t index, const std::string& source) {
+  const std::string base = fmt::format("body.part[{}]", index);
+  const auto* shape_node = table.get("shape");
+  if (!shape_node) throw InvalidInput(base + ".shape", "is required: cylinder, tube, cone, sphere or mesh");
+  PartSpec part;
+  const std::string shape = string_of(*shape_node, base + ".shape");
+  part.mesh = shape == "mesh";
+  if (!part.mesh) {
+    const auto solid = part_shape_from_name(shape);
+    if (!solid)
+      throw InvalidInput(base + ".shape", fmt::format("unknown shape '{}': must be cylinder, tube, cone, sphere or mesh",
+                                                      printable(shape)));
+    part.solid.shape = *solid;
+  }
+  part.label = printable(shape);
+  for (const auto& [name_key, value] : table) {
+    const std::string name(name_key.str());
+    const std::string key = base + "." + printable(name);
+    const PartKey* known = nullptr;
+    for (const PartKey& k : kPartKeys)
+      if (name == k.name) known = &k;
+    if (!known) throw InvalidInput(key, "unknown key in " + printable(source));
+    const std::string_view shapes(known->shapes);
+    bool applies = shapes.empty();
+    for (std::size_t at = 0; !applies && at < shapes.size();) {
+      const std::size_t end = std::min(shapes.find(' ', at), shapes.size());
+      applies = shapes.substr(at, end - at) == shape;
+      at = end + 1;
+    }
+    if (!applies) throw InvalidInput(key, fmt::format("does not apply to shape '{}' (only to: {})", part.label, shapes));
+    if (name == "shape") continue;
+    if (name == "apex") {
+      const std::string apex = string_of(value, key);
+      if (apex != "down" && apex != "up") throw InvalidInput(key, "must be \"down\" or \"up\"");
+      part.solid.apex_up = apex == "up";
+    } else if (name == "file") {
+      part.file = string_of(value, key);
+      if (part.file.empty()) throw InvalidInput(key, "must name a mesh file (STL, OBJ or PLY)");
+    } else if (name == "units") {
+      const std::string units = string_of(value, key);
+      if (units != "m" && units != "mm") throw InvalidInput(key, "must be \"m\" or \"mm\"");
+      part.scale = units == "mm" ? 1e-3 : 1.0;
+    } else {
+      const double x = number_of(value, key);
+      if (name == "radius") part.solid.radius = x;
+      else if (name == "inner_radius") part.solid.inner_radius = x;
+      else if (name == "height") part.solid.height = x;
+      else if (name == "z0") part.solid.z0 = x;
+      else if (name == "density") part.solid.density = x;
+      else if (name == "mass") part.solid.mass = x;
+    }
+  }
+  if (part.mesh) {
+    if (part.file.empty()) throw InvalidInput(base + ".file", "is required for shape 'mesh' (STL, OBJ or PLY)");
+    part.label = printable(part.file);
+    // Relative to the configuration's folder, so a configuration and its mesh move together.
+    const std::filesystem::path file(part.file);
+    if (file.is_relative()) part.file = (std::filesystem::path(source).parent_path() / file).string();
+  }
+  return part;
+}
+
 }  // namespace
+
+std::string PartSpec::name(std::size_t index) const { return fmt::format("body.part[{}] ({})", index, label); }
+
+const std::vector<std::string>& general_body_keys() {
+  static const std::vector<std::string> keys = {"body.offset_x", "body.offset_y", "body.Ixy", "body.Ixz", "body.Iyz"};
+  return keys;
+}
 
 const std::vector<std::string>& body_keys() {
   static const auto keys = keys_starting("body.");
@@ -149,6 +236,23 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
     config.has_body = config.has_body || section == "body";
     for (const auto& [name_key, value] : *sub) {
       const std::string key = section + "." + std::string(name_key.str());
+      if (key == "body.part") {  // [[body.part]]: an array of tables (SPEC section 10)
+        const auto* parts = value.as_array();
+        if (!parts || !parts->is_array_of_tables())
+          throw InvalidInput(key, "must be an array of tables: [[body.part]]");
+        for (const auto& part : *parts) config.parts.push_back(parse_part(*part.as_table(), config.parts.size(), source));
+        continue;
+      }
+      if (key == "motion.spin_rpm") {  // SPEC section 9: stored in rad/s
+        config.motion.spin = rad_per_s_from_rpm(number_of(value, key));
+        config.given.insert("motion.spin_rpm");
+        continue;
+      }
+      const auto& general = general_body_keys();
+      if (std::find(general.begin(), general.end(), key) != general.end()) {
+        config.general[key] = number_of(value, key);
+        continue;
+      }
       if (double* field = config_field(config.body, config.motion, key)) {
         *field = number_of(value, key);
         config.given.insert(key);
@@ -170,6 +274,19 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
       else if (auto b = value.value_exact<bool>()) config.settings[key] = *b;
       else throw InvalidInput(key, "must be a number or a string");
     }
+  }
+  if (config.given.count("motion.spin_rpm")) {
+    if (config.given.count("motion.spin")) throw InvalidInput("motion.spin_rpm", "give spin or spin_rpm, not both");
+    config.given.erase("motion.spin_rpm");
+    config.given.insert("motion.spin");
+  }
+  if (!config.parts.empty()) {
+    for (const std::string& key : required_body_keys())
+      if (config.given.count(key))
+        throw InvalidInput(key, "cannot be given with [[body.part]]: the parts make the body (give one or the other)");
+    if (!config.general.empty())
+      throw InvalidInput(config.general.begin()->first,
+                         "cannot be given with [[body.part]]: the parts make the body (give one or the other)");
   }
   return config;
 }

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "heavytop/units.hpp"
+
 namespace heavytop::io {
 namespace {
 
@@ -120,6 +122,12 @@ std::string linear_stability_text(const Body& body, double spin, const std::vect
                        r.critical ? fmt::format("{:.6g}", *r.critical) : "none",
                        intervals_text(r.intervals), r.verdict.reason);
   }
+  // SPEC section 9: text gives spins in rpm too.
+  std::string rpm;
+  for (const auto& r : models)
+    rpm += fmt::format("{}{} {}", rpm.empty() ? "" : ", ", name(r.kind),
+                       r.critical ? fmt::format("{:.6g}", rpm_from_rad_per_s(*r.critical)) : "none");
+  out << "critical spins in rpm: " << rpm << "\n";
   out << "\n(first-order: the paper's model (4), (9); body-fixed: its model (5), which the paper "
          "itself calls erroneous; linearized: the exact linearisation, the one to trust.)\n";
   const auto& paper = models[0];
@@ -172,7 +180,9 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
   out << fmt::format("  energy index {} (s1 = {:.6g}, s2 = {:.6g} N m); proven stable for spins (rad/s): {}; "
                      "superfast {}\n",
                      v.energy_index, v.s1, v.s2, intervals_text(lyapunov.intervals),
-                     lyapunov.superfast ? fmt::format("from {:.6g} rad/s", *lyapunov.superfast) : "at no spin");
+                     lyapunov.superfast ? fmt::format("from {:.6g} rad/s ({:.6g} rpm)", *lyapunov.superfast,
+                                                        rpm_from_rad_per_s(*lyapunov.superfast))
+                                       : "at no spin");
   if (v.certificate == LyapunovCertificate::CriticalQuartic)
     out << "  At the boundary of (9) the linear models grow (a Jordan block, erratum E2), but the real "
            "symmetric top does not: started delta off vertical its tilt stays below about sqrt(2 delta).\n";

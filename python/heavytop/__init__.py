@@ -33,7 +33,8 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
     m.t, m.theta                                                               # s, rad
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
-from ._api import compare, derive, derive_check, derive_rotations, lifetime, simulate, stability, sweep
+from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, lifetime, precession,
+                   rpm, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, Derivation, DerivationCheck, Lifetime, Lyapunov, ModelComparison, ModelStability,
                       NonlinearReference, Rotations, SimulationSummary, Stability, StabilityMap, Trajectory, Wander)
@@ -41,6 +42,7 @@ from .results import (CheckRow, Comparison, Derivation, DerivationCheck, Lifetim
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
     "stability", "simulate", "compare", "sweep", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
+    "body_from_parts", "body_report", "precession", "rpm",
     "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
     "Wander", "Lifetime",

@@ -2,8 +2,11 @@
 C++ library) and the typed results of heavytop.results."""
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import Literal, Optional
+import json
+import os
+import re
+from collections.abc import Mapping, Sequence as SequenceOf
+from typing import Any, Dict, List, Literal, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -14,7 +17,8 @@ from .results import (Comparison, Derivation, DerivationCheck, Lifetime, Rotatio
                       Trajectory)
 from .results import SimulationSummary
 
-__all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotations", "derive_check"]
+__all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotations", "derive_check", "body_from_parts",
+           "body_report", "precession", "rpm"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -23,13 +27,13 @@ DeriveMethod = Literal["euler-moving", "euler-fixed", "euler-body", "lagrange"]
 Sequence = Literal["phi-theta", "theta-phi"]
 
 
-def stability(body: Body, spin: float, *, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
+def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
               phi_rate0: float = 0.0, horizon: float = 100.0) -> Stability:
     """Linear stability of the first-order, body-fixed and linearized models at spin w0, the
     real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders.
 
         body         Body (SI units)
-        spin         rad/s, the spin w0 about the body axis
+        spin         rad/s, the spin w0 about the body axis (or spin_rpm, in rpm; not both)
         theta0, phi0, theta_rate0, phi_rate0
                      rad, rad/s: the state the wander starts from (SPEC section 2); all 0 (the
                      upright rotation, which never tilts) by default
@@ -53,11 +57,12 @@ def stability(body: Body, spin: float, *, theta0: float = 0.0, phi0: float = 0.0
 
     Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".
     """
-    return Stability.from_json(_core.stability(body, spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+    return Stability.from_json(_core.stability(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                                phi_rate0=phi_rate0, horizon=horizon))
 
 
-def simulate(body: Body, model: ModelName = "nonlinear", *, spin: float = 0.0, theta0: float = 0.0,
+def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float] = None,
+             spin_rpm: Optional[float] = None, theta0: float = 0.0,
              phi0: float = 0.0, theta_rate0: float = 0.0, phi_rate0: float = 0.0, t_end: float = 10.0,
              samples: int = 1001, method: Optional[LinearMethod] = None,
              integrator: Optional[IntegratorName] = None, rtol: Optional[float] = None,
@@ -74,6 +79,7 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: float = 0.0, t
 
       Motion (keyword only):
         spin          rad/s, spin w0 about the body axis (default 0)
+        spin_rpm      rpm, the same in revolutions per minute (instead of spin)   [--spin-rpm]
         theta0        rad, initial theta (tilt towards xi)
         phi0          rad, initial phi (tilt about xi)
         theta_rate0   rad/s, initial theta'
@@ -112,7 +118,7 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: float = 0.0, t
     fails (an integrator that cannot meet its tolerance, or exceeds max_steps) raises
     RuntimeError with the summary's message (the error's .summary holds the summary).
     """
-    columns, summary = _core.simulate(body, model, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+    columns, summary = _core.simulate(body, model, spin=_spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                       phi_rate0=phi_rate0, t_end=t_end, samples=samples, method=method,
                                       integrator=integrator, rtol=rtol, atol=atol, step=step, order=order,
                                       max_steps=max_steps)
@@ -124,7 +130,8 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: float = 0.0, t
     return Trajectory(columns, summary)
 
 
-def compare(body: Body, *, spin: float = 0.0, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
+def compare(body: Body, *, spin: Optional[float] = None, spin_rpm: Optional[float] = None, theta0: float = 0.0,
+            phi0: float = 0.0, theta_rate0: float = 0.0,
             phi_rate0: float = 0.0, t_end: float = 10.0, samples: int = 10001, rtol: Optional[float] = None,
             atol: Optional[float] = None) -> Comparison:
     """Every approximate model against the full nonlinear body, from one state over one horizon.
@@ -132,6 +139,7 @@ def compare(body: Body, *, spin: float = 0.0, theta0: float = 0.0, phi0: float =
         body                      Body (SI units)
         spin, theta0, phi0,       the initial state (rad/s, rad, rad, rad/s, rad/s; keyword only,
         theta_rate0, phi_rate0    default 0)
+        spin_rpm                  rpm, the spin in revolutions per minute (instead of spin)
         t_end                     s, horizon (> 0; default 10)                     [--t-end]
         samples                   samples over the horizon (3 to 2000000: every model's whole
                                   trajectory is held; default 10001)             [--samples]
@@ -146,7 +154,7 @@ def compare(body: Body, *, spin: float = 0.0, theta0: float = 0.0, phi0: float =
     json.loads of `heavytop compare --format json`. Runs with the GIL released; Ctrl-C stops it.
     Bad input raises InvalidInput (a ValueError): "samples: must be an integer in [3, 2000000]".
     """
-    return Comparison.from_json(_core.compare(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+    return Comparison.from_json(_core.compare(body, spin=_spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                               phi_rate0=phi_rate0, t_end=t_end, samples=samples, rtol=rtol,
                                               atol=atol))
 
@@ -257,3 +265,88 @@ def lifetime(body: Body, *, spin: float, theta0: float = 0.0, phi0: float = 0.0,
     return Lifetime.from_json(_core.lifetime(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                              phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
                                              atol=atol, max_steps=max_steps))
+def rpm(value: float) -> float:
+    """rad/s of a spin given in rpm (SPEC section 9): rpm(3000) == 100 pi. Every function taking
+    a spin in rad/s takes rpm(x) for a spin of x rpm, exactly as the command line's --spin-rpm."""
+    return _core.rad_per_s_from_rpm(value)
+
+
+def _invalid(key: str, rule: str) -> Exception:
+    error = _core.InvalidInput(f"{key}: {rule}")
+    error.key, error.rule = key, rule  # type: ignore[attr-defined]
+    return error
+
+
+def _parts_toml(parts: SequenceOf[Mapping[str, Any]]) -> str:
+    if isinstance(parts, Mapping) or isinstance(parts, str) or not isinstance(parts, SequenceOf):
+        raise _invalid("parts", "must be a list of dicts, one per part")
+    lines: List[str] = []
+    for i, part in enumerate(parts):
+        if not isinstance(part, Mapping):
+            raise _invalid(f"body.part[{i}]", "must be a dict of the part's keys (shape, radius, ...)")
+        lines.append("[[body.part]]")
+        for key, value in part.items():
+            if not isinstance(key, str) or not re.fullmatch(r"[A-Za-z0-9_]+", key):
+                raise _invalid(f"body.part[{i}].{key!s}", "unknown key")
+            if isinstance(value, str):
+                lines.append(f"{key} = {json.dumps(value)}")  # a JSON string is a TOML basic string
+            elif isinstance(value, (int, float)) and not isinstance(value, bool):
+                lines.append(f"{key} = {float(value)!r}")
+            else:
+                raise _invalid(f"body.part[{i}].{key}", "must be a number or a string")
+    return "\n".join(lines) + "\n"
+
+
+def _assemble(parts: SequenceOf[Mapping[str, Any]], gravity: float, folder: str,
+              allow_general: bool) -> Tuple[Dict[str, Any], Optional[Body]]:
+    # The configuration's own parser reads them: the same keys, defaults and messages as a file.
+    # A relative mesh path is relative to `folder` (a file's are to the file's folder).
+    return _core.assemble_parts(_parts_toml(parts), os.path.join(folder, "parts"), gravity, allow_general)
+
+
+def body_from_parts(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> Body:
+    """The Body (A, B, C in kg m^2 about O, mass kg, length m) that parts make (SPEC section 10).
+
+        parts    a list of dicts, each a [[body.part]] of a configuration file: shape ("cylinder",
+                 "tube", "cone", "sphere", "mesh"), radius, inner_radius (tube), height (m), z0 (m,
+                 its lowest point above O), apex ("down" | "up", cone), density (kg/m^3) or mass
+                 (kg); a mesh: file (STL, OBJ, PLY), units ("m" | "mm")
+        gravity  m/s^2 (default 9.81)
+        folder   where a relative mesh path starts (default: the working folder)
+
+    Bad parts raise InvalidInput naming the part as the command line does ("body.part[0].radius
+    (cone): must be a finite number > 0"); so does a general body (centre of mass off z, or z not
+    a principal axis), which no model integrates yet: body_report() describes it.
+    """
+    body = _assemble(parts, gravity, folder, False)[1]
+    assert body is not None  # a general body raised InvalidInput
+    return body
+
+
+def body_report(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> Dict[str, Any]:
+    """json.loads of `heavytop body --format json` for these parts (see body_from_parts): {"A", "B",
+    "C" (kg m^2 about O), "mass" (kg), "length" (m), "gravity", "products": {"xy", "xz", "yz"} (kg m^2),
+    "offset": {"x", "y"} (m), "principal_axis_tilt" (rad), "general" (bool), "parts": [{"name",
+    "mass", "centre_of_mass", "inertia"}]}. A general body is reported, not refused."""
+    return _assemble(parts, gravity, folder, True)[0]
+
+
+def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None) -> Dict[str, Any]:
+    """Steady motions at a tilt: json.loads of `heavytop precession --tilt TILT --format json`.
+
+        body      Body (SI units)
+        tilt      rad, the axis's angle from the upward vertical, in (0, pi)
+        spin      rad/s, w3 = w.k (or spin_rpm in rpm; not both; default 0)
+
+    Returns {"body", "tilt", "spin", "steady_precession": {"slow", "fast" (each {"rate" rad/s,
+    "period" s, "nutation_frequency" rad/s, "state": the SPEC section 2 state on it} or None),
+    "min_spin" (rad/s or None), "slow_limit", "fast_limit"} (None for A != B),
+    "permanent_rotations": [{"plane", "rate", "period", "stable", "eigenvalues", "state"}]}.
+    """
+    return _core.precession(body, tilt, _spin(spin, spin_rpm))
+
+
+def _spin(spin: Optional[float], spin_rpm: Optional[float]) -> float:
+    if spin is not None and spin_rpm is not None:
+        raise _invalid("spin_rpm", "give spin or spin_rpm, not both")
+    return rpm(spin_rpm) if spin_rpm is not None else (0.0 if spin is None else spin)

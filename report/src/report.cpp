@@ -62,7 +62,9 @@ std::string errata_html(const Body& body, const InitialState& state, const std::
   if (!symmetric) {
     const auto& paper = reports[0];
     const auto& truth = reports[2];
-    auto crit = [](const std::optional<double>& c) { return c ? fmt::format("{:.6g} rad/s", *c) : std::string("none"); };
+    auto crit = [](const std::optional<double>& c) {
+      return c ? fmt::format("{:.6g} rad/s ({:.6g} rpm)", *c, *c * 30.0 / M_PI) : std::string("none");
+    };
     items += fmt::format(
         "<li><b>E3, this body is asymmetric (A &ne; B).</b> Model (4) is the linearisation only for A = B. "
         "(9) puts the critical spin at {}; the exact linearisation at {}.{}</li>",

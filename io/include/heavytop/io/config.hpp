@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "heavytop/body.hpp"
+#include "heavytop/mass_properties.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop::io {
@@ -36,6 +37,22 @@ double* config_field(Body& body, InitialState& state, std::string_view key);
 /// The further sections a configuration may hold, with their keys: {"simulate": {"model", ...}}.
 const std::map<std::string, std::vector<std::string>>& command_sections();
 
+/// SPEC section 11's keys of [body]: the general body's offsets and products of inertia
+/// ("body.offset_x", "body.offset_y", "body.Ixy", "body.Ixz", "body.Iyz"; m, kg m^2).
+const std::vector<std::string>& general_body_keys();
+
+/// One [[body.part]] of SPEC section 10 as the file gives it (the core checks its values when
+/// the parts are assembled: io/body_parts.hpp).
+struct PartSpec {
+  std::string label;       ///< its shape, or for a mesh its file as written: "cone", "top.stl"
+  bool mesh = false;       ///< shape = "mesh"
+  SolidPart solid;         ///< the solid's shape and sizes; density or mass for a mesh too
+  std::string file;        ///< mesh: the path, a relative one resolved against the configuration's folder
+  double scale = 1.0;      ///< mesh: m per unit of the file (units "m": 1, "mm": 1e-3)
+  /// "body.part[i]" followed by the label in parentheses, as messages name the part.
+  std::string name(std::size_t index) const;
+};
+
 /// A value of a further section, as TOML typed it.
 using SettingValue = std::variant<std::int64_t, double, bool, std::string>;
 
@@ -46,6 +63,8 @@ struct Configuration {
   InitialState motion;              ///< the keys given; the others 0
   std::set<std::string> given;      ///< the body and motion keys the file gives ("body.A", ...)
   bool has_body = false;            ///< the file has a [body] section
+  std::vector<PartSpec> parts;      ///< [[body.part]] (SPEC section 10), in order; then body.A... are not given
+  std::map<std::string, double> general;  ///< SPEC section 11's keys given ("body.Ixy" -> kg m^2)
   std::map<std::string, SettingValue> settings;  ///< further sections' values, "simulate.t_end"
 
   /// A further section's number (an integer is read as a double); nullopt if absent.
@@ -61,7 +80,8 @@ struct Configuration {
 /// InvalidInput naming `path_key` (e.g. "--config") when it is not TOML, and the offending
 /// "section.key" for an unknown section or key or a value of the wrong type; nothing else for
 /// any bytes (fuzz/fuzz_config.cpp). Does not check the body's rules (validate() does, once
-/// the command line's values are applied).
+/// the command line's values are applied). `motion.spin_rpm` is stored as motion.spin in rad/s
+/// (given as "motion.spin" too); giving both is refused. No mesh file is read here.
 Configuration parse_configuration(std::string_view text, const std::string& source, const std::string& path_key);
 
 /// The largest configuration file read_configuration() reads (bytes): more is refused, so a

@@ -1,0 +1,34 @@
+// heavytop precession --tilt THETA: the steady motions at a tilt (steady precessions of a
+// symmetric top, tilted permanent rotations) and the initial states that start on them.
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "heavytop/io/body_formats.hpp"
+#include "heavytop/precession.hpp"
+
+namespace heavytop::cli {
+
+Action add_precession_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "precession", "Steady motions at a tilt: a symmetric top's slow and fast steady precessions at its spin, the "
+                    "minimum spin, the permanent rotations about the vertical, each with its initial state");
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
+  auto tilt = std::make_shared<double>(0.0);
+  cmd->add_option("--tilt", *tilt, "rad, the axis's angle from the upward vertical, in (0, pi)")->required();
+  return [inputs, tilt] {
+    inputs->resolve();
+    const Body& body = inputs->body();
+    const double spin = inputs->state().spin;
+    std::optional<PrecessionAnalysis> steady;
+    if (is_symmetric(body)) steady = analyse_precession(body, *tilt, spin);
+    const auto rotations = permanent_rotations(body, *tilt);
+    const PrecessionAnalysis* p = steady ? &*steady : nullptr;
+    write_output(inputs->output(), inputs->format() == "json" ? io::precession_json(body, *tilt, spin, p, rotations)
+                                                              : io::precession_text(body, *tilt, spin, p, rotations));
+  };
+}
+
+}  // namespace heavytop::cli

@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// The body a configuration describes (SPEC sections 1, 10, 11) as one BodyAssembly: from its
+/// [[body.part]] list (meshes read from their files) or from its A, B, C, mass, length and
+/// the general body's offsets and products.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "heavytop/io/config.hpp"
+#include "heavytop/mass_properties.hpp"
+
+namespace heavytop::io {
+
+/// An assembled body and the names messages give its parts ("body.part[0] (cone)").
+struct AssembledBody {
+  BodyAssembly assembly;
+  std::vector<std::string> names;          ///< one per part; empty for a body given by its moments
+  std::vector<MassProperties> parts;       ///< each part's own mass properties about O
+};
+
+/// The parts' mass properties about O (each mesh read with read_mesh()), summed. Throws
+/// InvalidInput naming the part and the key ("body.part[0].radius (cone)", "body.part[1]
+/// (top.stl)") for the first bad part.
+AssembledBody assemble_parts(const std::vector<PartSpec>& parts);
+
+/// The same for a body given by its moments about O (A, B, C, mass, length) and SPEC section
+/// 11's keys ("body.Ixy" ..., default 0): centre (offset_x, offset_y, length), the tensor
+/// [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]].
+AssembledBody assemble_moments(const Body& body, const std::map<std::string, double>& general);
+
+}  // namespace heavytop::io

@@ -1,0 +1,46 @@
+#include "heavytop/io/body_parts.hpp"
+
+#include <cmath>
+
+#include "heavytop/io/mesh_file.hpp"
+
+namespace heavytop::io {
+
+AssembledBody assemble_parts(const std::vector<PartSpec>& parts) {
+  AssembledBody out;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const PartSpec& p = parts[i];
+    out.names.push_back(p.name(i));
+    // The core names the part "body.part[i]" or a field of it, "body.part[i].radius"; the
+    // message adds its shape or file: "body.part[i].radius (cone)" (SPEC section 10).
+    const std::string base = "body.part[" + std::to_string(i) + "]";
+    try {
+      out.parts.push_back(p.mesh ? mass_properties(read_mesh(p.file, p.scale, base), p.solid.density, p.solid.mass, base)
+                                 : mass_properties(p.solid, base));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(e.key() + " (" + p.label + ")", e.rule());
+    }
+  }
+  out.assembly = assemble(out.parts);
+  return out;
+}
+
+AssembledBody assemble_moments(const Body& body, const std::map<std::string, double>& general) {
+  auto value = [&](const char* key) {
+    const auto it = general.find(key);
+    if (it == general.end()) return 0.0;
+    if (!std::isfinite(it->second)) throw InvalidInput(key, "must be a finite number");
+    return it->second;
+  };
+  MassProperties p;
+  p.mass = body.mass;
+  p.centre = {value("body.offset_x"), value("body.offset_y"), body.length};
+  const double xy = value("body.Ixy"), xz = value("body.Ixz"), yz = value("body.Iyz");
+  p.inertia << body.A, -xy, -xz, -xy, body.B, -yz, -xz, -yz, body.C;
+  AssembledBody out;
+  out.parts.push_back(p);
+  out.assembly = assemble(out.parts);
+  return out;
+}
+
+}  // namespace heavytop::io

@@ -1,0 +1,57 @@
+// A body from its parts (SPEC section 10), steady precessions, rpm: json.loads of the very
+// JSON `heavytop body` and `heavytop precession` print (heavytop_io).
+#include <optional>
+
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "heavytop/io/body_formats.hpp"
+#include "heavytop/io/body_parts.hpp"
+#include "heavytop/io/config.hpp"
+#include "heavytop/precession.hpp"
+#include "heavytop/units.hpp"
+
+namespace heavytop::python {
+
+using namespace pybind11::literals;
+
+namespace {
+
+// `text` is a configuration holding [[body.part]] tables (heavytop._api writes it from the
+// parts' dicts), read by the configuration's own parser so that Python checks what the file does.
+// A general body is refused as the command line refuses it unless `allow_general` (then the
+// Body is None).
+py::tuple assemble_parts(const std::string& text, const std::string& source, double gravity, bool allow_general) {
+  const io::Configuration config = io::parse_configuration(text, source, "parts");
+  if (config.parts.empty()) throw InvalidInput("parts", "give at least one part");
+  const io::AssembledBody assembled = io::assemble_parts(config.parts);
+  Body body;
+  body.gravity = gravity;
+  py::object made = py::none();
+  if (!allow_general || !assembled.assembly.general()) {
+    body = body_of(assembled.assembly, gravity, assembled.names);
+    validate(body);
+    made = py::cast(body);
+  }
+  return py::make_tuple(from_json(io::body_json(assembled, gravity)), made);
+}
+
+py::object precession(const Body& body, double tilt, double spin) {
+  validate(body);
+  std::optional<PrecessionAnalysis> steady;
+  if (is_symmetric(body)) steady = analyse_precession(body, tilt, spin);
+  const auto rotations = permanent_rotations(body, tilt);
+  return from_json(io::precession_json(body, tilt, spin, steady ? &*steady : nullptr, rotations));
+}
+
+}  // namespace
+
+void bind_parts(py::module_& m) {
+  m.def("assemble_parts", &assemble_parts, "(body JSON, Body or None) of [[body.part]] tables in TOML text",
+        "text"_a, "source"_a, "gravity"_a, "allow_general"_a);
+  m.def("precession", &precession, "json.loads of `heavytop precession --format json`", "body"_a, "tilt"_a,
+        "spin"_a);
+  m.def("rad_per_s_from_rpm", &rad_per_s_from_rpm, "rad/s of a spin in rpm (SPEC section 9)", "rpm"_a);
+}
+
+}  // namespace heavytop::python
