@@ -40,6 +40,7 @@ int run(int argc, char** argv) {
   add(cli::add_compare_command);
   add(cli::add_sweep_command);
   add(cli::add_report_command);
+  add(cli::add_fit_decay_command);
 
   io::remove_temporaries_on_signals();
   return run_reporting_errors(app, [&] {

@@ -21,5 +21,6 @@ Action add_derive_command(CLI::App& app);  ///< in heavytop-derive only (derive_
 Action add_compare_command(CLI::App& app);
 Action add_sweep_command(CLI::App& app);
 Action add_report_command(CLI::App& app);
+Action add_fit_decay_command(CLI::App& app);
 
 }  // namespace heavytop::cli

@@ -388,10 +388,15 @@ DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayO
   if (!fitted_inverse || !all_inverse)
     warnings.push_back("the Jacobian is singular at the optimum: the data do not determine every parameter "
                        "(uncertainties shown as NaN/null)");
-  else if (std::abs(fit.correlation) > 0.95)
-    warnings.push_back(fmt::format("axial and friction are strongly correlated (r = {:.3f}): the data hardly "
-                                   "separate viscous drag from dry friction; a record down to lower spins would",
-                                   fit.correlation));
+  else if (const double worst = std::max(fit.axial.uncertainty / fit.axial.value,
+                                         fit.friction.uncertainty / fit.friction.value);
+           !fit.axial.at_bound && !fit.friction.at_bound && std::abs(fit.correlation) > 0.99 && worst > 0.2)
+    // The two torques are always correlated (both slow the spin; r near -0.99 even for a record
+    // down to the stop); it matters when it leaves one of them poorly known.
+    warnings.push_back(fmt::format("axial and friction are strongly correlated (r = {:.4f}) and one is known to "
+                                   "only {:.0f}%: the data hardly separate viscous drag from dry friction; a record "
+                                   "over a wider range of spins would",
+                                   fit.correlation, 100.0 * worst));
   if (!(fit.spin0.value > 0.0)) warnings.push_back("the fitted spin at t = 0 is not > 0: the data do not look like a decay");
   return fit;
 }

@@ -16,6 +16,7 @@ struct Field {
   const char* key;
   double Body::*body = nullptr;
   double InitialState::*state = nullptr;
+  double Damping::*damping = nullptr;  // of Body::damping
 };
 
 constexpr Field kFields[] = {
@@ -30,6 +31,9 @@ constexpr Field kFields[] = {
     {"motion.phi0", nullptr, &InitialState::phi0},
     {"motion.theta_rate0", nullptr, &InitialState::theta_rate0},
     {"motion.phi_rate0", nullptr, &InitialState::phi_rate0},
+    {"damping.transverse", nullptr, nullptr, &Damping::transverse},
+    {"damping.axial", nullptr, nullptr, &Damping::axial},
+    {"damping.friction", nullptr, nullptr, &Damping::friction},
 };
 
 std::vector<std::string> keys_starting(std::string_view prefix) {
@@ -39,8 +43,8 @@ std::vector<std::string> keys_starting(std::string_view prefix) {
   return keys;
 }
 
-// Text from the user (a path, a TOML key, a parser's description quoting the input) as it
-// goes into a one-line message: control characters are shown escaped (\n, \x01).
+}  // namespace
+
 std::string printable(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -54,6 +58,8 @@ std::string printable(std::string_view text) {
   }
   return out;
 }
+
+namespace {
 
 double number_of(const toml::node& node, const std::string& key) {
   if (auto v = node.value_exact<double>()) return *v;
@@ -78,7 +84,7 @@ const std::vector<std::string>& required_body_keys() {
 
 double* config_field(Body& body, InitialState& state, std::string_view key) {
   for (const Field& f : kFields)
-    if (key == f.key) return f.body ? &(body.*f.body) : &(state.*f.state);
+    if (key == f.key) return f.body ? &(body.*f.body) : f.state ? &(state.*f.state) : &(body.damping.*f.damping);
   return nullptr;
 }
 
@@ -132,7 +138,7 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
   const auto& sections = command_sections();
   for (const auto& [section_key, node] : table) {
     const std::string section(section_key.str());
-    const bool known = section == "body" || section == "motion" || sections.count(section);
+    const bool known = section == "body" || section == "motion" || section == "damping" || sections.count(section);
     if (!known)
       throw InvalidInput(section.empty() ? "\"\"" : printable(section), "unknown section in " + printable(source));
     const auto* sub = node.as_table();
@@ -158,7 +164,8 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
   return config;
 }
 
-Configuration read_configuration(const std::string& path, const std::string& path_key) {
+std::string read_text_file(const std::string& path, const std::string& path_key, std::size_t max_bytes,
+                           std::string_view what) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const std::string shown = printable(path);
@@ -168,14 +175,18 @@ Configuration read_configuration(const std::string& path, const std::string& pat
   if (!in) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
   // One byte more than the limit tells a file at the limit from a larger one (or an endless
   // device); a pipe is read as far as that too.
-  std::string text(kMaxConfigurationBytes + 1, '\0');
+  std::string text(max_bytes + 1, '\0');
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
   text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMaxConfigurationBytes)
-    throw InvalidInput(path_key, fmt::format("'{}' is larger than {} bytes: not a configuration file", shown,
-                                             kMaxConfigurationBytes));
-  return parse_configuration(text, path, path_key);
+  if (text.size() > max_bytes)
+    throw InvalidInput(path_key, fmt::format("'{}' is larger than {} bytes: not {}", shown, max_bytes, what));
+  return text;
+}
+
+Configuration read_configuration(const std::string& path, const std::string& path_key) {
+  return parse_configuration(read_text_file(path, path_key, kMaxConfigurationBytes, "a configuration file"), path,
+                             path_key);
 }
 
 }  // namespace heavytop::io
