@@ -33,15 +33,16 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
     m.t, m.theta                                                               # s, rad
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
-from ._api import compare, derive, derive_check, derive_rotations, simulate, stability, sweep
+from ._api import compare, derive, derive_check, derive_rotations, fit_decay, simulate, stability, sweep
 from . import results
-from .results import (CheckRow, Comparison, Derivation, DerivationCheck, Lyapunov, ModelComparison, ModelStability,
-                      NonlinearReference, Rotations, SimulationSummary, Stability, StabilityMap, Trajectory, Wander)
+from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lyapunov,
+                      ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
+                      StabilityMap, Trajectory, Wander)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
     "stability", "simulate", "compare", "sweep", "grid_values", "derive", "derive_rotations", "derive_check",
     "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
-    "Wander",
+    "Wander", "fit_decay", "DecayFit", "FittedParameter",
 ]

@@ -41,5 +41,6 @@ void bind_simulate(py::module_& m);
 void bind_analyses(py::module_& m);
 void bind_sweep(py::module_& m);
 void bind_derive(py::module_& m);
+void bind_fit_decay(py::module_& m);
 
 }  // namespace heavytop::python

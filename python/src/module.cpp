@@ -42,4 +42,5 @@ PYBIND11_MODULE(_core, m) {
   bind_analyses(m);
   bind_sweep(m);
   bind_derive(m);
+  bind_fit_decay(m);
 }
