@@ -367,8 +367,8 @@ DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayO
     warnings.push_back("the law is exact for a symmetric body (A = B); for this one (A != B) it neglects the "
                        "torque (A - B) w1 w2 on the spin, small only while the axis stays near upright");
   if (!fit.summary.converged) return fit;
-  if (fit.axial.at_bound && fit.friction.at_bound) {
-    warnings.push_back("axial and friction are both held at their bound 0: the data show no decay");
+  if (fit.axial.value == 0.0 && fit.friction.value == 0.0) {
+    warnings.push_back("axial and friction are both 0: the data show no decay");
   } else {
     if (fit.axial.at_bound)
       warnings.push_back("axial is held at its bound 0 (the data prefer a negative value): no viscous drag is "
@@ -398,6 +398,10 @@ DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayO
                                    "over a wider range of spins would",
                                    fit.correlation, 100.0 * worst));
   if (!(fit.spin0.value > 0.0)) warnings.push_back("the fitted spin at t = 0 is not > 0: the data do not look like a decay");
+  if (fit_c && data.t.front() > 0.1 * (data.t.back() - data.t.front()))
+    warnings.push_back(fmt::format("spin0 is the spin extrapolated back to t = 0, {:g} s before the first point; "
+                                   "shift the times to start at 0 if that is not meant",
+                                   data.t.front()));
   return fit;
 }
 

@@ -214,6 +214,22 @@ TEST(FitDecay, WarnsWhereTheDataCannotSeparateTheTorques) {
   EXPECT_TRUE(has_warning(fit, "strongly correlated") || fit.axial.at_bound || fit.friction.at_bound);
   EXPECT_LT(fit.correlation, -0.99);
 
+  // No decay at all: both 0, said so (and the Jacobian is singular there: at d_a = tau0 = 0
+  // only the initial slope -(d_a w0 + tau0)/C is seen).
+  const DecayFit flat = fit_spin_decay(top, DecayData{{0.0, 1.0, 2.0, 3.0, 4.0}, {100.0, 100.0, 100.0, 100.0, 100.0}});
+  ASSERT_TRUE(flat.summary.converged);
+  EXPECT_EQ(flat.axial.value, 0.0);
+  EXPECT_EQ(flat.friction.value, 0.0);
+  EXPECT_EQ(flat.spin0.value, 100.0);
+  EXPECT_TRUE(has_warning(flat, "the data show no decay"));
+
+  // A stopwatch whose data start late: w0 is an extrapolation, and said to be.
+  DecayData late = curve(top, kAxial, kFriction, kSpin0, 90.0, 46);
+  late.t.erase(late.t.begin(), late.t.begin() + 20);
+  late.spin.erase(late.spin.begin(), late.spin.begin() + 20);
+  EXPECT_TRUE(has_warning(fit_spin_decay(top, late), "extrapolated back to t = 0, 40 s before the first point"));
+  EXPECT_FALSE(has_warning(fit_spin_decay(top, curve(top, kAxial, kFriction, kSpin0, 90.0, 46)), "extrapolated"));
+
   Body asymmetric = top;
   asymmetric.B = 1.1 * top.A;
   const DecayFit approx = fit_spin_decay(asymmetric, curve(asymmetric, kAxial, kFriction, kSpin0, 120.0, 61));
