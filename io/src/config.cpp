@@ -174,11 +174,17 @@ std::string read_text_file(const std::string& path, const std::string& path_key,
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
   // One byte more than the limit tells a file at the limit from a larger one (or an endless
-  // device); a pipe is read as far as that too.
-  std::string text(max_bytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  // device); a pipe is read as far as that too. In blocks, so that a small file under a large
+  // limit costs only its size.
+  std::string text;
+  constexpr std::size_t kBlock = 1 << 16;
+  while (text.size() <= max_bytes && in) {
+    const std::size_t before = text.size(), want = std::min(kBlock, max_bytes + 1 - before);
+    text.resize(before + want);
+    in.read(text.data() + before, static_cast<std::streamsize>(want));
+    text.resize(before + static_cast<std::size_t>(in.gcount()));
+  }
   if (in.bad()) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
-  text.resize(static_cast<std::size_t>(in.gcount()));
   if (text.size() > max_bytes)
     throw InvalidInput(path_key, fmt::format("'{}' is larger than {} bytes: not {}", shown, max_bytes, what));
   return text;
