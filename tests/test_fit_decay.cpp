@@ -63,6 +63,8 @@ TEST(FitDecay, RecoversViscousAndCoulombTogetherFromANoiselessCurve) {
   ASSERT_TRUE(fit.stop_time);
   EXPECT_LT(relative(*fit.stop_time, 60.0 * std::log(5.0)), 1e-8);
   EXPECT_TRUE(fit.summary.warnings.empty()) << fit.summary.warnings.front();
+  EXPECT_EQ(fit.summary.solver_runs, 4u);  // every active set of the two bounds
+  EXPECT_EQ(fit.summary.BriefReport().rfind("fit-decay: converged; 4 solver runs, ", 0), 0u) << fit.summary.BriefReport();
   RecordProperty("axial_relative_error", sci(relative(fit.axial.value, kAxial)));
   RecordProperty("friction_relative_error", sci(relative(fit.friction.value, kFriction)));
 }
