@@ -47,8 +47,10 @@ void validate(const FitDecayOptions& options);
 struct FittedParameter {
   double value = 0.0;        ///< the estimate (unit of the parameter)
   /// Its standard uncertainty (same unit): sqrt of the diagonal of s^2 (J^T J)^-1 at the
-  /// optimum, s^2 = RSS / (n - p), p the number of parameters fitted; NaN when J^T J is
-  /// singular (the data do not determine the parameters). 0 for a parameter not fitted.
+  /// optimum, s^2 = RSS / (n' - p), p the number of parameters fitted, n' the points where the
+  /// data or the fitted law are above 0 (a top read as stopped where the law has stopped it
+  /// carries neither noise nor information); NaN when J^T J is singular (the data do not
+  /// determine the parameters) or n' <= p. 0 for a parameter not fitted.
   /// For a parameter held at its bound 0 it is the spread it would have if it were free
   /// (from the Jacobian of every parameter at the optimum), a scale for how large it may be.
   double uncertainty = 0.0;

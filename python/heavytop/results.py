@@ -370,8 +370,8 @@ class FittedParameter(JsonResult):
     value: float
     """The estimate (N m s for axial, N m for friction, rad/s for spin0)."""
     uncertainty: Optional[float]
-    """Standard uncertainty, sqrt of the diagonal of s^2 (J^T J)^-1, s^2 = RSS / (n - p); None
-    when the data do not determine it; 0 for a parameter given, not fitted. At the bound: the
+    """Standard uncertainty, sqrt of the diagonal of s^2 (J^T J)^-1, s^2 = RSS / (n' - p), n' the
+    points not read as 0 where the fitted law has stopped too; None when the data do not determine it; 0 for a parameter given, not fitted. At the bound: the
     spread it would have if it were free."""
     fitted: bool
     """False for spin0 when it was given (spin0=...)."""
