@@ -318,7 +318,7 @@ DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayO
   // gets its spread from the covariance of every parameter at the optimum.
   // The degrees of freedom count only the points that say something: a stopped top read as 0
   // where the law has stopped it too has neither a residual nor a Jacobian row (no noise, no
-  // information); counting them would shrink s^2 (by 20% for the example's 12 such points).
+  // information); counting them would shrink s^2 (by 20% where 12 of 61 points read 0 after the stop).
   const int p_fitted = problem.unknowns();
   std::size_t informative = 0;
   for (std::size_t i = 0; i < n; ++i) informative += problem.y[i] > 0.0 || model(best.p, problem.tau[i]).y > 0.0;
