@@ -375,6 +375,9 @@ DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayO
   if (!is_symmetric(body))
     warnings.push_back("the law is exact for a symmetric body (A = B); for this one (A != B) it neglects the "
                        "torque (A - B) w1 w2 on the spin, small only while the axis stays near upright");
+  if (body.damping.driven)
+    warnings.push_back("the body is driven (a motor holds its spin); the fit describes a free spin-down, with "
+                       "the motor off");
   if (!fit.summary.converged) return fit;
   if (fit.axial.value == 0.0 && fit.friction.value == 0.0) {
     warnings.push_back("axial and friction are both 0: the data show no decay");

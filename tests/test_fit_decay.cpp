@@ -248,6 +248,9 @@ TEST(FitDecay, WarnsWhereTheDataCannotSeparateTheTorques) {
   asymmetric.B = 1.1 * top.A;
   const DecayFit approx = fit_spin_decay(asymmetric, curve(asymmetric, kAxial, kFriction, kSpin0, 120.0, 61));
   EXPECT_TRUE(has_warning(approx, "A != B"));
+  Body driven = top;
+  driven.damping.driven = true;
+  EXPECT_TRUE(has_warning(fit_spin_decay(driven, curve(top, kAxial, kFriction, kSpin0, 120.0, 61)), "free spin-down"));
 }
 
 TEST(FitDecay, RefusesBadDataAndOptionsNamingTheKey) {
