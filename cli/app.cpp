@@ -43,6 +43,7 @@ int run(int argc, char** argv) {
   add(cli::add_report_command);
   add(cli::add_body_command);
   add(cli::add_precession_command);
+  add(cli::add_fit_decay_command);
 
   io::remove_temporaries_on_signals();
   return run_reporting_errors(app, [&] {

@@ -24,5 +24,6 @@ Action add_report_command(CLI::App& app);
 Action add_lifetime_command(CLI::App& app);
 Action add_body_command(CLI::App& app);
 Action add_precession_command(CLI::App& app);
+Action add_fit_decay_command(CLI::App& app);
 
 }  // namespace heavytop::cli

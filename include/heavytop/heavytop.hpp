@@ -10,6 +10,7 @@
 
 #include "heavytop/body.hpp"            // Body, validate(), example_toy_top()
 #include "heavytop/damping.hpp"         // Damping (SPEC section 6) and the spin-decay law
+#include "heavytop/fit_decay.hpp"       // d_a and tau0 fitted to a measured spin decay
 #include "heavytop/state.hpp"           // InitialState, Trajectory
 #include "heavytop/frames.hpp"          // the frames and angles (SPEC section 2)
 #include "heavytop/linear_models.hpp"   // the three linear models as data

@@ -45,8 +45,8 @@ std::vector<std::string> keys_starting(std::string_view prefix) {
   return keys;
 }
 
-// Text from the user (a path, a TOML key, a parser's description quoting the input) as it
-// goes into a one-line message: control characters are shown escaped (\n, \x01).
+}  // namespace
+
 std::string printable(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -60,6 +60,8 @@ std::string printable(std::string_view text) {
   }
   return out;
 }
+
+namespace {
 
 double number_of(const toml::node& node, const std::string& key) {
   if (auto v = node.value_exact<double>()) return *v;
@@ -291,7 +293,8 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
   return config;
 }
 
-Configuration read_configuration(const std::string& path, const std::string& path_key) {
+std::string read_text_file(const std::string& path, const std::string& path_key, std::size_t max_bytes,
+                           std::string_view what) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const std::string shown = printable(path);
@@ -300,15 +303,25 @@ Configuration read_configuration(const std::string& path, const std::string& pat
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
   // One byte more than the limit tells a file at the limit from a larger one (or an endless
-  // device); a pipe is read as far as that too.
-  std::string text(kMaxConfigurationBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  // device); a pipe is read as far as that too. In blocks, so that a small file under a large
+  // limit costs only its size.
+  std::string text;
+  constexpr std::size_t kBlock = 1 << 16;
+  while (text.size() <= max_bytes && in) {
+    const std::size_t before = text.size(), want = std::min(kBlock, max_bytes + 1 - before);
+    text.resize(before + want);
+    in.read(text.data() + before, static_cast<std::streamsize>(want));
+    text.resize(before + static_cast<std::size_t>(in.gcount()));
+  }
   if (in.bad()) throw InvalidInput(path_key, fmt::format("cannot read '{}'", shown));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMaxConfigurationBytes)
-    throw InvalidInput(path_key, fmt::format("'{}' is larger than {} bytes: not a configuration file", shown,
-                                             kMaxConfigurationBytes));
-  return parse_configuration(text, path, path_key);
+  if (text.size() > max_bytes)
+    throw InvalidInput(path_key, fmt::format("'{}' is larger than {} bytes: not {}", shown, max_bytes, what));
+  return text;
+}
+
+Configuration read_configuration(const std::string& path, const std::string& path_key) {
+  return parse_configuration(read_text_file(path, path_key, kMaxConfigurationBytes, "a configuration file"), path,
+                             path_key);
 }
 
 }  // namespace heavytop::io

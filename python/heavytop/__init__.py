@@ -33,11 +33,12 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
     m.t, m.theta                                                               # s, rad
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
-from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, lifetime, precession,
-                   rpm, simulate, stability, sweep)
+from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
+                   precession, rpm, simulate, stability, sweep)
 from . import results
-from .results import (CheckRow, Comparison, Derivation, DerivationCheck, Lifetime, Lyapunov, ModelComparison, ModelStability,
-                      NonlinearReference, Rotations, SimulationSummary, Stability, StabilityMap, Trajectory, Wander)
+from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
+                      ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
+                      StabilityMap, Trajectory, Wander)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
@@ -45,5 +46,5 @@ __all__ = [
     "body_from_parts", "body_report", "precession", "rpm",
     "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
-    "Wander", "Lifetime",
+    "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
 ]

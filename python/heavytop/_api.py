@@ -13,12 +13,12 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import Body
-from .results import (Comparison, Derivation, DerivationCheck, Lifetime, Rotations, Stability, StabilityMap,
-                      Trajectory)
+from .results import (Comparison, DecayFit, Derivation, DerivationCheck, Lifetime, Rotations, Stability,
+                      StabilityMap, Trajectory)
 from .results import SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotations", "derive_check", "body_from_parts",
-           "body_report", "precession", "rpm"]
+           "body_report", "precession", "rpm", "lifetime", "fit_decay"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -350,3 +350,36 @@ def _spin(spin: Optional[float], spin_rpm: Optional[float]) -> float:
     if spin is not None and spin_rpm is not None:
         raise _invalid("spin_rpm", "give spin or spin_rpm, not both")
     return rpm(spin_rpm) if spin_rpm is not None else (0.0 if spin is None else spin)
+
+
+def fit_decay(t: npt.ArrayLike, spin: npt.ArrayLike, body: Optional[Body] = None, *,
+              spin0: Optional[float] = None) -> DecayFit:
+    """The axial damping d_a and the dry friction tau0 of a top ([damping] axial, friction),
+    fitted to a measured spin decay: `heavytop fit-decay --format json` for the same points.
+
+        t        s, the times (>= 0, non-decreasing)                        [CSV column t]
+        spin     rad/s, the spin's magnitude at each time (>= 0; 0 once dry
+                 friction has stopped it; rpm * pi / 30 for rpm)             [CSV column spin]
+        body     Body: only C (kg m^2, about the spin axis) enters; default the
+                 built-in toy top, as the command line without --config
+        spin0    rad/s: the spin at t = 0 when known; None (default) fits it  [--known-spin0]
+
+    Least squares on the spin (unweighted) through the law C w' = -d_a w - tau0 sign(w), exact
+    for a free symmetric body (A = B; a warning says so otherwise), with Eigen's
+    Levenberg-Marquardt; d_a and tau0 are bounded below by 0. At least 4 points (3 with spin0).
+
+    Returns a DecayFit: .axial (N m s), .friction (N m), .spin0 (rad/s), each a
+    FittedParameter (.value, .uncertainty, .fitted, .at_bound); .rms_residual (rad/s),
+    .points, .converged, .correlation, .C (kg m^2), .stop_time (s or None), .termination,
+    .warnings. Bad input raises InvalidInput (a ValueError): "data: point 3: t must be >= 0
+    and non-decreasing", "spin0: must be a finite number > 0 ...", "body.C: ...". A fit that
+    does not converge raises RuntimeError (its .result holds the DecayFit).
+    """
+    fit = DecayFit.from_json(_core.fit_decay(np.asarray(t, dtype=np.float64).ravel().tolist(),
+                                             np.asarray(spin, dtype=np.float64).ravel().tolist(),
+                                             body if body is not None else _core.example_toy_top(), spin0=spin0))
+    if not fit.converged:
+        error = RuntimeError(f"fit_decay: the fit did not converge: {fit.termination}")
+        error.result = fit  # type: ignore[attr-defined]
+        raise error
+    return fit

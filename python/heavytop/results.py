@@ -24,7 +24,7 @@ from ._core import Body
 __all__ = [
     "JsonResult", "ModelStability", "Lyapunov", "Wander", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
-    "StabilityMap",
+    "StabilityMap", "FittedParameter", "DecayFit",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -391,6 +391,69 @@ class SimulationSummary(JsonResult):
     @classmethod
     def from_json(cls, data: Dict[str, Any]) -> "SimulationSummary":
         return cls(**data, _data=data)
+
+
+# ---- fit_decay -------------------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class FittedParameter(JsonResult):
+    """One parameter of fit_decay(): its estimate and standard uncertainty (same unit)."""
+
+    value: float
+    """The estimate (N m s for axial, N m for friction, rad/s for spin0)."""
+    uncertainty: Optional[float]
+    """Standard uncertainty, sqrt of the diagonal of s^2 (J^T J)^-1, s^2 = RSS / (n' - p), n' the
+    points not read as 0 where the fitted law has stopped too; None when the data do not determine it; 0 for a parameter given, not fitted. At the bound: the
+    spread it would have if it were free."""
+    fitted: bool
+    """False for spin0 when it was given (spin0=...)."""
+    at_bound: bool
+    """True when the data prefer a value below 0 and it is held at 0 (not identified)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "FittedParameter":
+        return cls(**data, _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class DecayFit(JsonResult):
+    """fit_decay(): the [damping] axial and friction fitted to a measured spin decay through the
+    law C w' = -d_a w - tau0 sign(w) (exact for a free symmetric body, A = B); ``to_dict()`` is
+    json.loads of `heavytop fit-decay --format json`."""
+
+    axial: FittedParameter
+    """d_a, N m s: [damping] axial."""
+    friction: FittedParameter
+    """tau0, N m: [damping] friction."""
+    spin0: FittedParameter
+    """w0, rad/s: the spin at t = 0."""
+    rms_residual: float
+    """rad/s, sqrt(RSS / n)."""
+    points: int
+    """n, the number of data points."""
+    converged: bool
+    """The least-squares solver met its tolerances (fit_decay() raises RuntimeError otherwise)."""
+    correlation: Optional[float]
+    """Correlation coefficient of axial and friction (dimensionless); None if undetermined."""
+    C: float
+    """kg m^2, the body's axial moment the fit assumed."""
+    stop_time: Optional[float]
+    """s, when the fitted dry friction stops the spin; None without friction."""
+    termination: str
+    """One line: why the solver stopped."""
+    warnings: Tuple[str, ...]
+    """One line each: a parameter at its bound or within 2 uncertainties of 0, the torques
+    not separated by the data, A != B, ..."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "DecayFit":
+        return cls(axial=FittedParameter.from_json(data["axial"]), friction=FittedParameter.from_json(data["friction"]),
+                   spin0=FittedParameter.from_json(data["spin0"]), rms_residual=data["rms_residual"],
+                   points=data["points"], converged=data["converged"], correlation=data["correlation"], C=data["C"],
+                   stop_time=data["stop_time"], termination=data["termination"], warnings=tuple(data["warnings"]),
+                   _data=data)
 
 
 def _column(name: str, doc: str) -> property:

@@ -42,5 +42,6 @@ void bind_analyses(py::module_& m);
 void bind_sweep(py::module_& m);
 void bind_derive(py::module_& m);
 void bind_parts(py::module_& m);
+void bind_fit_decay(py::module_& m);
 
 }  // namespace heavytop::python

@@ -43,4 +43,5 @@ PYBIND11_MODULE(_core, m) {
   bind_sweep(m);
   bind_derive(m);
   bind_parts(m);
+  bind_fit_decay(m);
 }

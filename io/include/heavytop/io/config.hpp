@@ -88,6 +88,16 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
 /// device such as /dev/zero given as a file is bad input, not an endless read.
 inline constexpr std::size_t kMaxConfigurationBytes = 1 << 20;
 
+/// Text from the user (a path, a key, a field of a file) as it goes into a one-line message:
+/// control characters shown escaped (\n, \x01).
+std::string printable(std::string_view text);
+
+/// The content of the file `path`, at most `max_bytes` (more is refused, so a device such as
+/// /dev/zero is bad input, not an endless read). Throws InvalidInput naming `path_key` when it
+/// does not exist, is a folder, cannot be read or is too large ("not <what>").
+std::string read_text_file(const std::string& path, const std::string& path_key, std::size_t max_bytes,
+                           std::string_view what);
+
 /// Reads `path` (at most kMaxConfigurationBytes) and parses it as parse_configuration() does.
 /// Throws InvalidInput naming `path_key` also when the file cannot be read or is too large.
 Configuration read_configuration(const std::string& path, const std::string& path_key);

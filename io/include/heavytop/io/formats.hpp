@@ -9,6 +9,7 @@
 
 #include "heavytop/compare.hpp"
 #include "heavytop/lifetime.hpp"
+#include "heavytop/fit_decay.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
@@ -60,5 +61,15 @@ std::string comparison_text(const Comparison& comparison, double t_end);
 std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear);
 std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin,
                            const std::vector<SweepVerdict>& verdicts);
+
+/// `heavytop fit-decay --format json`: {"axial", "friction", "spin0": {"value", "uncertainty"
+/// (null when not determined), "fitted", "at_bound"}, "rms_residual" (rad/s), "points",
+/// "converged", "correlation" (of axial and friction, or null), "C" (kg m^2), "stop_time" (s or
+/// null), "termination", "warnings": [...]}; units N m s, N m, rad/s (fit_decay.hpp).
+std::string fit_decay_json(const DecayFit& fit);
+/// The text for people: the values with their uncertainties, the warnings, what the fit
+/// assumed, and the [damping] section to paste into a configuration (`transverse` as in
+/// `configured`, axial and friction at full precision, so that the pasted file reproduces them).
+std::string fit_decay_text(const DecayFit& fit, const Damping& configured);
 
 }  // namespace heavytop::io
