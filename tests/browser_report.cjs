@@ -1,6 +1,6 @@
 // The report page in a real browser (Debian's chromium, headless, driven by puppeteer-core):
-// node browser_report.cjs CHROMIUM REPORT_DIR OUT_DIR NAME
-// Loads REPORT_DIR/report.html from file:// and checks what a student would: every request is
+// node browser_report.cjs CHROMIUM OUT_DIR NAME=REPORT_DIR...
+// Loads each REPORT_DIR/report.html from file:// and checks what a student would: every request is
 // a local file (any other request fails the test), no console errors, the WebGL view draws and
 // animates, pause stops it, scrubbing moves it, the overlays show, every figure and plot loads,
 // the explorer answers a click. Screenshots go to OUT_DIR/NAME-*.png. Exit 0 when all pass.
@@ -8,10 +8,10 @@ const puppeteer = require("puppeteer-core");
 const fs = require("fs");
 const path = require("path");
 
-const [chromium, reportDir, outDir, name] = process.argv.slice(2);
-let failures = 0;
+const [chromium, outDir, ...reports] = process.argv.slice(2);
+let failures = 0, current = "";
 function check(what, ok, detail = "") {
-  console.log(`${ok ? "ok  " : "FAIL"} ${what}${detail ? ": " + detail : ""}`);
+  console.log(`${ok ? "ok  " : "FAIL"} ${current}: ${what}${detail ? ": " + detail : ""}`);
   if (!ok) failures++;
 }
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -25,6 +25,16 @@ const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
            "--no-first-run", "--no-default-browser-check", "--disable-extensions", "--disable-background-networking"],
     defaultViewport: { width: 1280, height: 900 },
   });
+  for (const report of reports) {
+    const [name, reportDir] = report.split("=");
+    current = name;
+    await checkPage(browser, name, reportDir);
+  }
+  await browser.close();
+  process.exit(failures ? 1 : 0);
+})().catch((err) => { console.log("FAIL", err.stack || err); process.exit(1); });
+
+async function checkPage(browser, name, reportDir) {
   const page = await browser.newPage();
   const foreign = [], errors = [], failed = [];
   await page.setRequestInterception(true);
@@ -42,8 +52,7 @@ const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
   await sleep(800);
   if (!(await page.evaluate(() => !!window.heavytopView))) {
     check("the 3D view starts", false, errors.join(" | "));
-    await browser.close();
-    process.exit(1);
+    return page.close();
   }
 
   // Pixels of the 3D canvas (its drawing buffer is preserved) as a data URL; and a summary.
@@ -143,6 +152,5 @@ const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
   check("every request local (file://)", foreign.length === 0, foreign.join(" "));
   check("no missing local file", failed.length === 0, failed.join(" "));
   check("no console errors", errors.length === 0, errors.join(" | "));
-  await browser.close();
-  process.exit(failures ? 1 : 0);
-})().catch((err) => { console.log("FAIL", err.stack || err); process.exit(1); });
+  await page.close();
+}

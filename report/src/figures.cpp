@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <fcntl.h>
 #include <spawn.h>
@@ -33,10 +34,12 @@ struct Style {
   double width;
 };
 
+// The models wide, the truth a thin black line drawn last, on top: where a model agrees with
+// the truth both stay visible (a coloured band with a black centre line).
 const std::map<std::string, Style> kStyles = {
-    {"nonlinear", {"#000000", "solid", 2.5}},   {"first-order", {"#1f77b4", "solid", 1.5}},
-    {"body-fixed", {"#ff7f0e", "'-'", 1.5}},    {"linearized", {"#2ca02c", "'.'", 2.0}},
-    {"lagrange-exact", {"#9467bd", "'_'", 1.5}}};
+    {"nonlinear", {"#000000", "solid", 1.2}},   {"first-order", {"#1f77b4", "solid", 4.0}},
+    {"body-fixed", {"#ff7f0e", "'-'", 3.0}},    {"linearized", {"#2ca02c", "'.'", 4.0}},
+    {"lagrange-exact", {"#9467bd", "'_'", 2.5}}};
 
 std::string line_style(const std::string& model) {
   const Style& s = kStyles.at(model);
@@ -146,6 +149,9 @@ std::vector<SeriesFile> write_trajectories(const Comparison& c, double r, const 
         break;
       }
       if (next < shown.size() && shown[next] == i) {
+        // theta = atan2(k_xi, k_zeta) jumps by 2 pi when the axis passes below the horizontal:
+        // a blank line breaks the curve there instead of drawing the jump as a wall.
+        if (next > 0 && std::abs(tr.theta[i] - tr.theta[shown[next - 1]]) > std::numbers::pi) out << "\n";
         out << row(i);
         ++next;
       }
@@ -163,7 +169,7 @@ std::string plot_list(const std::vector<SeriesFile>& files, const std::string& c
   std::string list;
   for (const SeriesFile& f : files) {
     if (skip_truth && f.model == "nonlinear") continue;
-    const std::string title = f.leaves_at ? fmt::format("{} (leaves the chart at t = {:.3g} s)", f.model, *f.leaves_at)
+    const std::string title = f.leaves_at ? fmt::format("{} (leaves at {:.3g} s)", f.model, *f.leaves_at)
                                           : f.model == "nonlinear" ? std::string("nonlinear (truth)") : f.model;
     list += fmt::format("{}'{}' using {} with lines {} title '{}'", list.empty() ? "" : ", \\\n  ", f.path, columns,
                         line_style(f.model), title);
@@ -203,7 +209,7 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   const AngleUnit unit = angle_unit(c);
   std::vector<Figure> figures;
   // The key in its own column right of the frames (long titles never reach into them).
-  const char* key = "set key outside right top Left reverse width 1\nset rmargin at screen 0.70\n";
+  const char* key = "set key outside right top Left reverse width 1\nset rmargin at screen 0.68\n";
 
   std::string angles = fmt::format(
       "set multiplot layout 2,1 title 'Angles of the axis: every model from the same start'\n"
@@ -225,7 +231,7 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
       "set title 'Path of the axis tip seen from above: nutation loops and cusps'\nset grid\nset size ratio -1\n"
       "{0}set xrange [{1}:{2}]\nset yrange [{1}:{2}]\nset format x '%g'\nset format y '%g'\n"
       "set xlabel 'xi: k_{{xi}} ({3}), about theta'\nset ylabel 'eta: k_{{eta}} ({3}), about -phi'\nplot ",
-      key, -r * unit.scale, r * unit.scale, unit.name);
+      key, -std::min(r, 1.05) * unit.scale, std::min(r, 1.05) * unit.scale, unit.name);  // |k_xi|, |k_eta| <= 1
   path += plot_list(files, fmt::format("($5*{0}):($6*{0})", unit.scale));
   figures.push_back(render("axis-path", "The tip of the axis seen from above (xi to the right, eta up; to first order "
                            "(theta, -phi)), every model: the nutation loops and cusps as the precession carries them round.",

@@ -21,9 +21,12 @@ const $ = (id) => document.getElementById(id);
 const COLORS = { nonlinear: "#000000", "first-order": "#1f77b4", "body-fixed": "#ff7f0e", linearized: "#2ca02c",
                  "lagrange-exact": "#9467bd" };
 
+// x to `digits` significant digits, without trailing zeros after the point (400, 0.05, 1.5e-9).
 function fmt(x, digits = 4) {
   if (x === null || x === undefined || !isFinite(x)) return "–";
-  return Number(x).toPrecision(digits).replace(/\.?0+(e|$)/, "$1");
+  const [mantissa, exponent] = Number(x).toPrecision(digits).split("e");
+  const m = mantissa.includes(".") ? mantissa.replace(/0+$/, "").replace(/\.$/, "") : mantissa;
+  return exponent === undefined ? m : `${m}e${exponent.replace("+", "")}`;
 }
 
 // ---- the attitude: SPEC section 2 ------------------------------------------------------------
@@ -302,10 +305,10 @@ function buildPlots() {
     const s = [{ label: "t (s)" }], data = [t];
     // The truth last, so it is drawn on top of the others.
     for (const m of D.models) {
-      s.push({ label: m.name, stroke: COLORS[m.name], width: 1.5, dash: m.name === "body-fixed" ? [6, 4] : undefined });
+      s.push({ label: m.name, stroke: COLORS[m.name], width: 3.5, dash: m.name === "body-fixed" ? [6, 4] : undefined });
       data.push(m[key].map((x, i) => (m.diverged_at !== null && t[i] > m.diverged_at ? null : x * scale)));
     }
-    s.push({ label: "nonlinear (truth)", stroke: COLORS.nonlinear, width: 2.5 });
+    s.push({ label: "nonlinear (truth)", stroke: COLORS.nonlinear, width: 1.2 });  // thin, on top: models show beneath
     data.push(D.nonlinear[key].map((x) => x * scale));
     return { s, data };
   };
@@ -331,8 +334,14 @@ function buildPlots() {
   el.id = "plot-errors";
   $("plots").appendChild(el);
   charts.push(new uPlot({ title: "Angle error of each model against the nonlinear body (rad, log scale)", width: width(),
-                          height: 300, cursor, series: s, scales: { x: { time: false }, y: { distr: 3 } },
-                          axes: [{ label: "t (s)" }, { label: "max(|d theta|, |d phi|) (rad)", size: 70 }] }, data, el));
+                          height: 300, cursor, series: s, scales: { x: { time: false }, y: { distr: 3, log: 10 } },
+                          axes: [{ label: "t (s)" },
+                                 // Decades only, as 1e-9: uPlot's own labels round tiny values to 0.
+                                 { label: "max(|d theta|, |d phi|) (rad)", size: 70,
+                                   values: (u, splits) => splits.map((v) => {
+                                     const e = Math.round(Math.log10(v));
+                                     return Math.abs(v / 10 ** e - 1) < 1e-6 ? `1e${e}` : "";
+                                   }) }] }, data, el));
   window.addEventListener("resize", () => charts.forEach((c) => c.setSize({ width: width(), height: 300 })));
 }
 
