@@ -309,7 +309,9 @@ function buildPlots() {
       data.push(m[key].map((x, i) => (m.diverged_at !== null && t[i] > m.diverged_at ? null : x * scale)));
     }
     s.push({ label: "nonlinear (truth)", stroke: COLORS.nonlinear, width: 1.2 });  // thin, on top: models show beneath
-    data.push(D.nonlinear[key].map((x) => x * scale));
+    // theta = atan2(k_xi, k_zeta) jumps by 2 pi when the axis passes below the horizontal: a gap there, not a wall.
+    const truth = D.nonlinear[key];
+    data.push(truth.map((x, i) => (i > 0 && Math.abs(x - truth[i - 1]) > Math.PI ? null : x * scale)));
     return { s, data };
   };
   const cursor = { sync: { key: sync.key }, drag: { x: true, y: true } };
@@ -338,6 +340,11 @@ function buildPlots() {
                           axes: [{ label: "t (s)" },
                                  // Decades only, as 1e-9: uPlot's own labels round tiny values to 0.
                                  { label: "max(|d theta|, |d phi|) (rad)", size: 70,
+                                   splits: (u, ax, min, max) => {
+                                     const out = [];
+                                     for (let e = Math.ceil(Math.log10(min) - 1e-9); e <= Math.floor(Math.log10(max) + 1e-9); e++) out.push(10 ** e);
+                                     return out;
+                                   },
                                    values: (u, splits) => splits.map((v) => {
                                      const e = Math.round(Math.log10(v));
                                      return Math.abs(v / 10 ** e - 1) < 1e-6 ? `1e${e}` : "";
