@@ -14,7 +14,10 @@ packages=(
   python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
   clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
+  nodejs chromium                     # the report's page script (npm packages, bundled at build time) and its browser test
 )
+# npm: Debian's package, unless a node install (e.g. NodeSource's nodejs) already brings its own.
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -296,7 +296,9 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   double top = std::max(2.0 * std::abs(state.spin), 1e-9);
   for (const auto& r : reports)
     if (r.kind != LinearModelKind::BodyFixed && r.critical) top = std::max(top, 2.0 * *r.critical);
-  const std::vector<SweepAxis> axes{{"B/A", lo, hi, 200}, {"spin", 0.0, top, 200}};
+  // 160 x 160: the map reads as finely as at 200 x 200, and its CSV (every point computed,
+  // 1.4 MB) keeps the folder of the built-in example under 5 MB.
+  const std::vector<SweepAxis> axes{{"B/A", lo, hi, 160}, {"spin", 0.0, top, 160}};
   const auto verdicts = sweep_verdicts(body, state, axes, SweepOptions{}, 0, grid_size(axes));
   figures.push_back(plot_sweep_map(staging.path(), axes, verdicts));
 

@@ -30,7 +30,7 @@ if(NOT have_lock STREQUAL want_lock)
                   WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE failed OUTPUT_VARIABLE log ERROR_VARIABLE log)
   if(failed)
     file(REMOVE "${WORK}/package-lock.json")  # so the next build tries again
-    write_without("npm ci failed when heavytop was built (no network?): ${log}")
+    write_without("npm ci failed when heavytop was built (no network?) ${log}")
     return()
   endif()
 endif()
