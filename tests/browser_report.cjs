@@ -115,6 +115,21 @@ async function checkPage(browser, name, reportDir) {
   check("the overlays draw", before !== after);
   await (await page.$("#scene")).screenshot({ path: path.join(outDir, `${name}-overlays.png`) });
 
+  // Played too fast for the screen, the spin is aliased: the page says so.
+  const note = await page.evaluate(() => {
+    const el = document.getElementById("speed");
+    const before = document.getElementById("spin-note").hidden;
+    el.value = el.max;
+    el.dispatchEvent(new Event("input"));
+    const n = document.getElementById("spin-note");
+    const after = { hidden: n.hidden, text: n.textContent };
+    el.value = String(window.HEAVYTOP_REPORT.playback.speeds.indexOf(window.HEAVYTOP_REPORT.playback.speed));
+    el.dispatchEvent(new Event("input"));
+    return { before, ...after };
+  });
+  check("at the default speed the spin is shown faithfully", note.before === true);
+  check("at the fastest speed the page says the spin is stroboscopic", !note.hidden && /stroboscopic/.test(note.text), note.text.slice(0, 120));
+
   // Every figure loads (a broken image has naturalWidth 0).
   const images = await page.$$eval("img", (els) => els.map((el) => ({ src: el.getAttribute("src"), ok: el.complete && el.naturalWidth > 0 })));
   check("every figure loads", images.length >= 6 && images.every((i) => i.ok), images.filter((i) => !i.ok).map((i) => i.src).join(" ") || `${images.length} figures`);
