@@ -129,7 +129,9 @@ TEST(ReportShape, EllipsoidHasTheBodysMoments) {
   // drawn at kMinThickness of the radius and said so.
   const auto disc = report::equivalent_ellipsoid(example_toy_top());
   EXPECT_NEAR(disc.semi_axes[2], report::kMinThickness * disc.semi_axes[0], 1e-12);
-  EXPECT_NE(disc.note.find("z semi-axis"), std::string::npos) << disc.note;
+  EXPECT_NE(disc.note.find("z semi-axis (0: a flat body)"), std::string::npos) << disc.note;
+  // Moments no body has (A_c = 0 here: A = m R^2) are said to be so.
+  EXPECT_NE(report::equivalent_ellipsoid(make_body(1.0, 1.5, 2.0, 1.0)).note.find("no real body"), std::string::npos);
   // (1/2) m r^2 = C of a disc of r = 20 mm is (1/5) m (a^2 + b^2) of an elliptic one of a = b = sqrt(5/2) r / sqrt 2.
   EXPECT_NEAR(disc.semi_axes[0], 0.020 * std::sqrt(1.25), 1e-9);
 }

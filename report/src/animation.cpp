@@ -32,8 +32,13 @@ EquivalentEllipsoid equivalent_ellipsoid(const Body& body) {
   for (std::size_t i = 0; i < 3; ++i) {
     e.semi_axes[i] = std::sqrt(std::max(squares[i], 0.0));
     if (e.semi_axes[i] < kMinThickness * largest) {
+      // A flat body (a disc's moments, A_c + B_c = C) gives 0 up to rounding; clearly below
+      // 0, the moments are those of no real body (SPEC section 1's warning).
+      const bool impossible = squares[i] < -1e-9 * largest * largest;
       e.note += fmt::format("{}the {} semi-axis ({}) is drawn at {:g} of the largest", e.note.empty() ? "" : "; ", axis[i],
-                            squares[i] < 0.0 ? "no real body has these moments" : fmt::format("{:.3g} m", e.semi_axes[i]),
+                            impossible ? std::string("no real body has these moments")
+                            : e.semi_axes[i] < 1e-6 * largest ? std::string("0: a flat body")
+                                                              : fmt::format("{:.3g} m", e.semi_axes[i]),
                             kMinThickness);
       e.semi_axes[i] = kMinThickness * largest;
     }

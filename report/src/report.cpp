@@ -194,9 +194,9 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
          data.dump() + ";\n";
 }
 
-/// The interactive section: the 3D view, the plots, the explorer (drawn by heavytop-report.js),
-/// or, in a build without them, a note; the static figures follow in both cases.
-std::string interactive_html(const Comparison& c, const EquivalentEllipsoid& shape, const Body& body) {
+/// The 3D view (drawn by heavytop-report.js), first on the page: what a lecture projects. In a
+/// build without the page script, a note instead; the static figures follow in both cases.
+std::string view_html(const Comparison& c, const EquivalentEllipsoid& shape) {
   if (const char* why = detail::web_assets_missing())
     return fmt::format("<p class='note' id='no-interactive'>No interactive view in this report: {}. The static "
                        "figures below show the same motion.</p>\n", html_escape(why));
@@ -206,10 +206,10 @@ std::string interactive_html(const Comparison& c, const EquivalentEllipsoid& sha
                          m.diverged_at ? fmt::format(" (diverges at {:.3g} s)", *m.diverged_at) : "");
   return fmt::format(R"(<section id='interactive'>
 <h2>Watch it move</h2>
-<p>The body is drawn as the uniform ellipsoid with its mass and moments (centre of mass at R on the spin axis){0}. The red
-sector and ball on its rim turn with the body at its true spin angle; black: the fixed point O, the vertical (dashed) and
-the path of the axis's tip. Drag to turn the view, scroll to zoom. Inset (bottom right): straight down on the tip, xi to the
-right, eta up, <span id='inset-scale'></span> from centre to edge.</p>
+<p>The full nonlinear motion. The body is drawn as the uniform ellipsoid with its mass and moments (centre of mass at R on
+the spin axis){0}. The red sector and ball on its rim turn with the body at its true spin angle; black: the fixed point O,
+the vertical (dashed) and the path of the axis's tip. Drag to turn the view, scroll to zoom. Inset (bottom right):
+straight down on the tip, xi to the right, eta up, <span id='inset-scale'></span> from centre to edge.</p>
 <div id='scene'></div>
 <div class='controls'><button id='play'>Pause</button>
 <label>speed <input type='range' id='speed' min='0' max='1' step='1'> <span id='speed-value'></span></label>
@@ -218,20 +218,28 @@ right, eta up, <span id='inset-scale'></span> from centre to edge.</p>
 <p class='note' id='spin-note' hidden></p>
 <p><small>Display data: {2} of the {3} computed samples (six digits); <a href='trajectories.csv'>trajectories.csv</a>
 and <a href='comparison.json'>comparison.json</a> have them all.</small></p>
+</section>
+)",
+                     shape.note.empty() ? "" : fmt::format(" (not to scale: {})", html_escape(shape.note)), boxes,
+                     display_samples(c.nonlinear.size()).size(), c.nonlinear.size());
+}
+
+/// The interactive plots and the stability explorer (nothing without the page script).
+std::string plots_html(const Body& body) {
+  if (detail::web_assets_missing()) return "";
+  return fmt::format(R"(<section id='interactive-plots'>
 <h2>Interactive plots</h2>
 <p>Drag to zoom (double-click to reset), hover for values, click a legend entry to hide or show its curve.</p>
 <div id='plots'></div>
 <h2>Stability explorer</h2>
 <p>The stability map's grid (colours as in the map below: green both (4) and the exact linearisation stable, red only (4),
-blue only the exact one, grey neither) with the diagram's nonlinear runs (white circles: {4}; black crosses: {5}) and this
+blue only the exact one, grey neither) with the diagram's nonlinear runs (white circles: {0}; black crosses: {1}) and this
 body (black +). Click a point for its verdicts.</p>
 <canvas id='explorer' width='1000' height='560'></canvas>
 <div id='explorer-info'><p>Click the map.</p></div>
 </section>
 )",
-                     shape.note.empty() ? "" : fmt::format(" (not to scale: {})", html_escape(shape.note)), boxes,
-                     display_samples(c.nonlinear.size()).size(), c.nonlinear.size(), diagram_words(body).first,
-                     diagram_words(body).second);
+                     diagram_words(body).first, diagram_words(body).second);
 }
 
 constexpr const char* kStyle = R"(
@@ -325,6 +333,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       body.A, body.B, body.C, body.mass, body.gravity, body.length, body.mgR(),
       body.length > 0 ? "centre of mass above the pivot" : body.length < 0 ? "hanging" : "centre of mass at the pivot",
       state.spin, state.spin * 30.0 / std::numbers::pi, state.theta0, state.phi0, state.theta_rate0, state.phi_rate0);
+  html << view_html(c, equivalent_ellipsoid(body));
   html << "<h2>Is it stable?</h2>\n<p><i>first-order</i> is the paper's model (4) and its condition (9); "
           "<i>body-fixed</i> its model (5), which the paper itself calls erroneous; <i>linearized</i> the exact "
           "linearisation about the upright spin, the one to trust.</p>\n"
@@ -350,7 +359,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
        << " s, against the full nonlinear body (" << c.summary.steps << " integrator steps, relative energy drift "
        << fmt::format("{:.1e}", c.summary.max_relative_energy_drift) << ").</p>\n"
        << comparison_html(c);
-  html << interactive_html(c, equivalent_ellipsoid(body), body);
+  html << plots_html(body);
   html << "<h2>Figures (for print)</h2>\n";
   for (const Figure& f : figures)
     html << fmt::format("<figure><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "

@@ -451,7 +451,7 @@ function start() {
       const p = document.createElement("p");
       p.className = "note";
       p.textContent = `The ${name} could not be drawn in this browser (${err.message}); the static figures below show the same.`;
-      $("interactive").prepend(p);
+      $(name === "3D view" ? "interactive" : "interactive-plots").prepend(p);
       console.error(err);
     }
   }
