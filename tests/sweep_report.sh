@@ -128,9 +128,19 @@ assert rate > 0 and turn > 2 * math.pi, (rate, turn)
 # Small angles in mrad, not 8.0e-02.
 titles = " ".join(e.text or "" for e in ET.parse(os.path.join(d, "angles.svg")).getroot().iter() if e.tag.endswith("text") or e.tag.endswith("tspan"))
 assert "theta (mrad)" in titles and "e-02" not in titles, titles[:300]
-# The page's data: decimated for display, the downloads whole.
 rows = list(csv.reader(open(os.path.join(d, "trajectories.csv"))))
 assert len(rows) == 1 + 4001
+html = open(os.path.join(d, "report.html")).read()
+for src in re.findall(r"(?:src|href)='([^']*)'", html):
+    assert "/" not in src and ":" not in src and os.path.exists(os.path.join(d, src)), src   # every file local, in DIR
+assert sum(os.path.getsize(os.path.join(d, f)) for f in os.listdir(d)) < 5e6   # README: under 5 MB
+# A hanging body: its diagram does not say the top stands up.
+titles = " ".join(e.text or "" for e in ET.parse(os.path.join(hanging, "stability-diagram.svg")).getroot().iter())
+assert "stands up" not in titles and "hanging body" in titles and "axis swings out" in titles, titles[:400]
+if not os.path.exists(os.path.join(d, "heavytop-report.js")):   # a build without npm: static, and says so
+    assert "No interactive view" in html and not os.path.exists(os.path.join(d, "report-data.js"))
+    sys.exit(0)
+# The page's data: decimated for display, the downloads whole.
 page = open(os.path.join(d, "report-data.js")).read()
 assert page.splitlines()[1].startswith("window.HEAVYTOP_REPORT = ")
 data = json.loads(page.split("window.HEAVYTOP_REPORT = ", 1)[1].rstrip().rstrip(";"))
@@ -139,14 +149,7 @@ assert len(data["t"]) == 1001 and data["t"][-1] == float(f"{float(rows[-1][0]):.
 # 200 T plus the small integral of theta' sin(phi).
 T, psi = data["t"][-1], data["nonlinear"]["psi"]
 assert abs(psi[-1] - 200.0 * T) < 1e-3 * 200.0 * T, (psi[-1], 200 * T)
-html = open(os.path.join(d, "report.html")).read()
-for src in re.findall(r"(?:src|href)='([^']*)'", html):
-    assert "/" not in src and ":" not in src and os.path.exists(os.path.join(d, src)), src   # every file local, in DIR
-assert os.path.exists(os.path.join(d, "heavytop-report.js")) or "No interactive view" in html
-assert sum(os.path.getsize(os.path.join(d, f)) for f in os.listdir(d)) < 5e6   # README: under 5 MB
-# A hanging body: its diagram does not say the top stands up.
-titles = " ".join(e.text or "" for e in ET.parse(os.path.join(hanging, "stability-diagram.svg")).getroot().iter())
-assert "stands up" not in titles and "hanging body" in titles and "axis swings out" in titles, titles[:400]
+assert "report-data.js" in html and "heavytop-report.js" in html
 PY
 
 finish

@@ -115,7 +115,7 @@ std::string comparison_html(const Comparison& c) {
 }
 
 /// Six significant digits: enough for a screen, a third of the bytes of a double's 17.
-double display(double x) { return std::isfinite(x) ? std::stod(fmt::format("{:.6g}", x)) : 0.0; }
+double display(double x) { return std::stod(fmt::format("{:.6g}", x)); }
 
 /// The report's numbers for its page script (report/web/src/main.js), as a classic script that
 /// assigns window.HEAVYTOP_REPORT (pages opened from file:// may not fetch() a JSON file).
@@ -125,9 +125,14 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
   using nlohmann::json;
   const std::size_t n = c.nonlinear.size();
   const std::vector<std::size_t> shown = display_samples(n);
+  // A value that is not finite, or past the end of a model's trajectory (one that stopped on a
+  // numerical failure), is null: the page leaves a gap, never a made-up number.
+  auto value = [](const std::vector<double>& v, std::size_t i) {
+    return i < v.size() && std::isfinite(v[i]) ? json(display(v[i])) : json(nullptr);
+  };
   auto pick = [&](const std::vector<double>& v) {
     json a = json::array();
-    for (std::size_t i : shown) a.push_back(display(v[i]));
+    for (std::size_t i : shown) a.push_back(value(v, i));
     return a;
   };
   const std::vector<double> psi = spin_angles(body, c.nonlinear);
@@ -146,7 +151,8 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
   json models = json::array();
   for (const auto& m : c.models) {
     json errors = json::array();
-    for (std::size_t i : shown) errors.push_back(display(angle_error(m.trajectory, c.nonlinear, i)));
+    for (std::size_t i : shown)
+      errors.push_back(i < m.trajectory.size() ? value({angle_error(m.trajectory, c.nonlinear, i)}, 0) : json(nullptr));
     models.push_back({{"name", m.model}, {"theta", pick(m.trajectory.theta)}, {"phi", pick(m.trajectory.phi)},
                       {"error", errors}, {"diverged_at", m.diverged_at ? json(*m.diverged_at) : json(nullptr)}});
   }

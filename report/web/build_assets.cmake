@@ -35,8 +35,11 @@ if(NOT have_lock STREQUAL want_lock)
   endif()
 endif()
 
-# (esbuild's bin is a native program once its install script ran, a node script otherwise.)
-execute_process(COMMAND "${WORK}/node_modules/.bin/esbuild" "${SRC}/src/main.js"
+# The page's sources beside node_modules, so that "three" and "uplot" resolve there. (esbuild's
+# bin is a native program once its install script ran, a node script otherwise.)
+file(REMOVE_RECURSE "${WORK}/src")
+file(COPY "${SRC}/src" DESTINATION "${WORK}")
+execute_process(COMMAND "${WORK}/node_modules/.bin/esbuild" "${WORK}/src/main.js"
                         --bundle --format=iife --minify --target=es2020 --loader:.css=text
                         --legal-comments=eof "--outfile=${WORK}/dist/heavytop-report.js" --log-level=warning
                 WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE failed OUTPUT_VARIABLE log ERROR_VARIABLE log)

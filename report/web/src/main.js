@@ -127,7 +127,8 @@ function buildView() {
   function traceOf(theta, phi, color, until) {
     const pts = new Float32Array(3 * n), v = new Vector3();
     let m = 0;
-    for (let i = 0; i < n && !(until !== null && t[i] > until); i++, m++) {
+    // Up to a divergence, or a gap (null: a model that stopped on a numerical failure).
+    for (let i = 0; i < n && !(until !== null && t[i] > until) && theta[i] !== null && phi[i] !== null; i++, m++) {
       tip(theta[i], phi[i], v);
       pts.set([v.x, v.y, v.z], 3 * i);
     }
@@ -233,14 +234,15 @@ function buildView() {
     tipDot.position.copy(v);
     truthTrace.geometry.setDrawRange(0, i + 1);
     for (const o of overlays) {
-      const m = o.model, gone = m.diverged_at !== null && time > m.diverged_at;
+      const m = o.model, mt = lerp(m.theta, u), mp = lerp(m.phi, u);
+      const gone = (m.diverged_at !== null && time > m.diverged_at) || !isFinite(mt) || !isFinite(mp);
       o.rod.visible = o.end.visible = o.dot.visible = !gone;
-      const mt = lerp(m.theta, u), mp = lerp(m.phi, u);
+      o.trace.geometry.setDrawRange(0, Math.min(i + 1, o.trace.userData.count));
+      if (gone) continue;
       o.rod.matrix.copy(attitude(mt, mp, 0, R));
       o.rod.matrixWorldNeedsUpdate = true;
       tip(mt, mp, o.end.position);
       o.dot.position.copy(o.end.position);
-      o.trace.geometry.setDrawRange(0, Math.min(i + 1, o.trace.userData.count));
     }
     readout.textContent = `t = ${time.toFixed(3)} s of ${fmt(T, 4)} s`;
     scrub.value = Math.round((time / T) * scrub.max);
@@ -306,7 +308,7 @@ function buildPlots() {
     // The truth last, so it is drawn on top of the others.
     for (const m of D.models) {
       s.push({ label: m.name, stroke: COLORS[m.name], width: 3.5, dash: m.name === "body-fixed" ? [6, 4] : undefined });
-      data.push(m[key].map((x, i) => (m.diverged_at !== null && t[i] > m.diverged_at ? null : x * scale)));
+      data.push(m[key].map((x, i) => (x === null || (m.diverged_at !== null && t[i] > m.diverged_at) ? null : x * scale)));
     }
     s.push({ label: "nonlinear (truth)", stroke: COLORS.nonlinear, width: 1.2 });  // thin, on top: models show beneath
     // theta = atan2(k_xi, k_zeta) jumps by 2 pi when the axis passes below the horizontal: a gap there, not a wall.
