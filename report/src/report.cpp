@@ -223,7 +223,7 @@ straight down on the tip, xi to the right, eta up, <span id='inset-scale'></span
 <p class='controls'>Overlay each approximate model's axis (its tip's path in its colour) beside the nonlinear one: {1}</p>
 <p class='note' id='spin-note' hidden></p>
 <p><small>Display data: {2} of the {3} computed samples (six digits); <a href='trajectories.csv'>trajectories.csv</a>
-and <a href='comparison.json'>comparison.json</a> have them all.</small></p>
+has them all.</small></p>
 </section>
 )",
                      shape.note.empty() ? "" : fmt::format(" (not to scale: {})", html_escape(shape.note)), boxes,

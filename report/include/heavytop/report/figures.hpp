@@ -23,8 +23,8 @@ struct Figure {
 };
 
 /// The most samples of a motion that the figures and the page draw: 1001 across a chart
-/// 1000-odd pixels wide loses nothing a reader sees (display only: trajectories.csv and
-/// comparison.json keep every computed sample).
+/// 1000-odd pixels wide loses nothing a reader sees (display only: trajectories.csv keeps
+/// every computed sample).
 inline constexpr std::size_t kDisplaySamples = 1001;
 /// The samples drawn of `n`: every stride-th (stride the smallest that keeps at most
 /// kDisplaySamples), and the last.
@@ -56,8 +56,8 @@ struct DiagramGrid {
 std::pair<const char*, const char*> diagram_words(const Body& body);
 
 /// The motion of every model, three figures from one set of data: "angles" (theta(t) and
-/// phi(t) overlaid, two panels), "axis-path" (theta against phi: nutation loops and cusps),
-/// "errors" (each approximate model's angle error against time, log scale).
+/// phi(t) overlaid, two panels), "axis-path" (the tip seen from above, (k_xi, k_eta), to first
+/// order (theta, -phi): loops and cusps), "errors" (each approximate model's angle error against time, log scale).
 std::vector<Figure> plot_motion(const std::string& dir, const Comparison& comparison);
 /// Stable spins against B/A for the three linear models, with nonlinear verdicts on a grid
 /// and the body itself marked: erratum E3 at a glance. `grid`, if not null, receives the
