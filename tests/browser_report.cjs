@@ -147,6 +147,16 @@ async function checkPage(browser, name, reportDir) {
     check(`plot ${id} drawn`, p.ink > 2000 && p.series >= 4, JSON.stringify(p));
   }
 
+  // A click on a plot shows that moment in the 3D view.
+  const over = await page.$("#plot-theta .u-over");
+  await over.scrollIntoView();
+  const plotBox = await over.boundingBox();
+  await page.mouse.move(plotBox.x + 0.2 * plotBox.width, plotBox.y + 0.5 * plotBox.height);
+  await page.mouse.click(plotBox.x + 0.25 * plotBox.width, plotBox.y + 0.5 * plotBox.height);
+  await sleep(200);
+  const vp = await view();
+  check("a click on a plot seeks the view there", Math.abs(vp.time - 0.25 * vp.T) < 0.02 * vp.T, `t = ${vp.time} of ${vp.T}`);
+
   // The explorer answers a click on the body's own point with its verdicts and says it is this body.
   const info = await page.evaluate(() => {
     const cv = document.getElementById("explorer"), D = window.HEAVYTOP_REPORT, M = D.map;

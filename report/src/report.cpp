@@ -235,7 +235,8 @@ std::string plots_html(const Body& body) {
   if (detail::web_assets_missing()) return "";
   return fmt::format(R"(<section id='interactive-plots'>
 <h2>Interactive plots</h2>
-<p>Drag to zoom (double-click to reset), hover for values, click a legend entry to hide or show its curve.</p>
+<p>Drag to zoom (double-click to reset), hover for values, click a legend entry to hide or show its curve; click a
+time to show that moment in the 3D view above.</p>
 <div id='plots'></div>
 <h2>Stability explorer</h2>
 <p>The stability map's grid (colours as in the map below: green both (4) and the exact linearisation stable, red only (4),

@@ -221,6 +221,8 @@ function buildView() {
     if (box) box.addEventListener("change", () => { o.group.visible = box.checked; draw(); });
   }
   window.heavytopView = state;  // for a reader's console (and the browser test's logs)
+  // The plots jump the view to a time clicked on them.
+  state.seek = (time) => { state.time = Math.max(0, Math.min(T, time)); draw(); };
 
   const R = new Matrix4(), v = new Vector3();
   function place(time) {
@@ -352,6 +354,12 @@ function buildPlots() {
                                      return Math.abs(v / 10 ** e - 1) < 1e-6 ? `1e${e}` : "";
                                    }) }] }, data, el));
   window.addEventListener("resize", () => charts.forEach((c) => c.setSize({ width: width(), height: 300 })));
+  // A click (not a drag, which zooms) shows that moment in the 3D view.
+  for (const c of charts)
+    c.over.addEventListener("click", () => {
+      if (c.select.width > 2 || c.cursor.left === undefined || c.cursor.left < 0 || !window.heavytopView) return;
+      window.heavytopView.seek(c.posToVal(c.cursor.left, "x"));
+    });
 }
 
 // ---- the stability explorer: the map's grid and the diagram's nonlinear runs, clickable ------------
