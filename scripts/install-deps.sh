@@ -15,7 +15,10 @@ packages=(
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
   libassimp-dev                       # CAD meshes (STL, OBJ, PLY) for [[body.part]] shape = "mesh"
   clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
+  nodejs chromium                     # the report's page script (npm packages, bundled at build time) and its browser test
 )
+# npm: Debian's package, unless a node install (e.g. NodeSource's nodejs) already brings its own.
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

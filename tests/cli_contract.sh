@@ -212,6 +212,11 @@ check "driven: the motor_torque column, the spin held" python3 -c '
 import csv; r = list(csv.reader(open("driven.csv"))); h = r[0]
 assert h[-4:] == ["dissipated_work", "vertical_momentum_loss", "axial_momentum_loss", "motor_torque"], h
 assert all(abs(float(x[h.index("motor_torque")]) - 2e-5) < 1e-18 for x in r[1:])'
+# A damped body's report says how long it stays up: the lifetime command's JSON, and its figure.
+"$H" report --axial-damping 2e-7 --theta0 0.01 --output damped-report > /dev/null 2>&1
+check "damped report: lifetime.json is the lifetime command's, with its figure" bash -c \
+  "cmp -s damped-report/lifetime.json life.json && test -s damped-report/lifetime.png && grep -q 'How long does it stay up' damped-report/report.html"
+rm -rf damped-report
 check "no temporary files left" test -z "$(ls -A | grep tmp)"
 
 finish

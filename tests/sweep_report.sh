@@ -94,4 +94,62 @@ for f in ("stability.json", "comparison.json", "comparison.csv", "trajectories.c
 assert "E3" in html and "http" not in html.replace("http-equiv", "")   # nothing fetched from a network
 PY
 
+# ---- the built-in example's report: what a student reads off it --------------------------------
+mkdir example && (cd example && "$H" > /dev/null)
+check "built-in example" test -e example/heavytop-report/report.html
+# A hanging body does not "stand up".
+"$H" report --A 1 --B 1.2 --C 0.7 --mass 1 --gravity 1 --length -1 --spin 1.6 --theta0 1e-3 --output hanging > /dev/null
+check "hanging body's report" test $? -eq 0
+check "example figures and page data" python3 - example/heavytop-report hanging <<'PY'
+import sys, os, re, json, math, csv, xml.etree.ElementTree as ET
+d, hanging = sys.argv[1], sys.argv[2]
+def svg_paths(name, title):
+    root = ET.parse(os.path.join(d, name)).getroot()
+    for g in root.iter():
+        t = [e for e in g if e.tag.endswith("title")]
+        if t and t[0].text == title:
+            return [e.get("d") for e in g.iter() if e.tag.endswith("path") and e.get("d")]
+    raise AssertionError((name, title))
+# Seen from above, the tip turns the way compare's precession rate says (+: counter-clockwise,
+# xi right, eta up); the mirror image (theta, phi) turned the other way.
+points = []
+for path in svg_paths("axis-path.svg", "nonlinear (truth)"):
+    for sub in path.split("M")[1:]:
+        xy = [tuple(map(float, p.split(","))) for p in re.findall(r"[-\d.]+,[-\d.]+", sub)]
+        if len(xy) > 100: points += xy          # the curve, not the key's sample line
+cx = sum(p[0] for p in points) / len(points); cy = sum(p[1] for p in points) / len(points)
+turn, last = 0.0, None
+for x, y in points:
+    a = math.atan2(-(y - cy), x - cx)           # SVG's y points down
+    if last is not None: turn += math.remainder(a - last, 2 * math.pi)
+    last = a
+rate = json.load(open(os.path.join(d, "comparison.json")))["nonlinear"]["precession_rate"]
+assert rate > 0 and turn > 2 * math.pi, (rate, turn)
+# Small angles in mrad, not 8.0e-02.
+titles = " ".join(e.text or "" for e in ET.parse(os.path.join(d, "angles.svg")).getroot().iter() if e.tag.endswith("text") or e.tag.endswith("tspan"))
+assert "theta (mrad)" in titles and "e-02" not in titles, titles[:300]
+rows = list(csv.reader(open(os.path.join(d, "trajectories.csv"))))
+assert len(rows) == 1 + 4001
+html = open(os.path.join(d, "report.html")).read()
+for src in re.findall(r"(?:src|href)='([^']*)'", html):
+    assert "/" not in src and ":" not in src and os.path.exists(os.path.join(d, src)), src   # every file local, in DIR
+assert sum(os.path.getsize(os.path.join(d, f)) for f in os.listdir(d)) < 5e6   # README: under 5 MB
+# A hanging body: its diagram does not say the top stands up.
+titles = " ".join(e.text or "" for e in ET.parse(os.path.join(hanging, "stability-diagram.svg")).getroot().iter())
+assert "stands up" not in titles and "hanging body" in titles and "axis swings out" in titles, titles[:400]
+if not os.path.exists(os.path.join(d, "heavytop-report.js")):   # a build without npm: static, and says so
+    assert "No interactive view" in html and not os.path.exists(os.path.join(d, "report-data.js"))
+    sys.exit(0)
+# The page's data: decimated for display, the downloads whole.
+page = open(os.path.join(d, "report-data.js")).read()
+assert page.splitlines()[1].startswith("window.HEAVYTOP_REPORT = ")
+data = json.loads(page.split("window.HEAVYTOP_REPORT = ", 1)[1].rstrip().rstrip(";"))
+assert len(data["t"]) == 1001 and data["t"][-1] == float(f"{float(rows[-1][0]):.6g}")
+# The rim turns at the true spin: for the symmetric toy top w3 stays 200 rad/s, so psi(T) is
+# 200 T plus the small integral of theta' sin(phi).
+T, psi = data["t"][-1], data["nonlinear"]["psi"]
+assert abs(psi[-1] - 200.0 * T) < 1e-3 * 200.0 * T, (psi[-1], 200 * T)
+assert "report-data.js" in html and "heavytop-report.js" in html
+PY
+
 finish

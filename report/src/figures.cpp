@@ -1,11 +1,14 @@
 #include "heavytop/report/figures.hpp"
 
+#include "heavytop/simulate.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <fcntl.h>
 #include <spawn.h>
@@ -13,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "heavytop/frames.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
@@ -32,10 +36,12 @@ struct Style {
   double width;
 };
 
+// The models wide, the truth a thin black line drawn last, on top: where a model agrees with
+// the truth both stay visible (a coloured band with a black centre line).
 const std::map<std::string, Style> kStyles = {
-    {"nonlinear", {"#000000", "solid", 2.5}},   {"first-order", {"#1f77b4", "solid", 1.5}},
-    {"body-fixed", {"#ff7f0e", "'-'", 1.5}},    {"linearized", {"#2ca02c", "'.'", 2.0}},
-    {"lagrange-exact", {"#9467bd", "'_'", 1.5}}};
+    {"nonlinear", {"#000000", "solid", 1.2}},   {"first-order", {"#1f77b4", "solid", 4.0}},
+    {"body-fixed", {"#ff7f0e", "'-'", 3.0}},    {"linearized", {"#2ca02c", "'.'", 4.0}},
+    {"lagrange-exact", {"#9467bd", "'_'", 2.5}}};
 
 std::string line_style(const std::string& model) {
   const Style& s = kStyles.at(model);
@@ -105,23 +111,6 @@ Figure render(const std::string& name, const std::string& caption, const std::st
   return {name, caption};
 }
 
-/// Writes the models' trajectories as t theta phi error, one file each; returns their paths.
-std::vector<std::pair<std::string, std::string>> write_trajectories(const Comparison& c, const Scratch& scratch) {
-  std::vector<std::pair<std::string, std::string>> files;
-  auto write = [&](const std::string& model, const Trajectory& tr, std::optional<double> until = std::nullopt) {
-    const std::string path = scratch.file(model + ".dat");
-    std::ofstream out(scratch.path(path));
-    for (std::size_t i = 0; i < tr.size() && !(until && tr.t[i] >= *until); ++i) {
-      const double err = std::max(std::abs(tr.theta[i] - c.nonlinear.theta[i]), std::abs(tr.phi[i] - c.nonlinear.phi[i]));
-      out << fmt::format("{} {} {} {}\n", tr.t[i], tr.theta[i], tr.phi[i], err);
-    }
-    files.emplace_back(model, path);
-  };
-  write("nonlinear", c.nonlinear);
-  for (const auto& m : c.models) write(m.model, m.trajectory, m.diverged_at);  // a diverged model up to then
-  return files;
-}
-
 /// rad, a range that shows the true motion with a margin (diverging models leave the plot).
 double angle_range(const Comparison& c) {
   double r = 0.0;
@@ -130,49 +119,129 @@ double angle_range(const Comparison& c) {
   return r > 0.0 ? 1.4 * r : 1e-3;
 }
 
-std::string plot_list(const std::vector<std::pair<std::string, std::string>>& files, const char* columns,
-                      bool skip_truth = false) {
+/// One model's data for the figures.
+struct SeriesFile {
+  std::string model;
+  std::string path;                 ///< as the scripts name it
+  std::optional<double> leaves_at;  ///< s, when it first leaves the charts' angle range
+};
+
+/// Writes the models' trajectories as t, theta, phi, error (rad), then k_xi, k_eta (the tip of
+/// the unit axis seen from above), one file each, the nonlinear body last (drawn last, on top).
+/// A model that leaves the angle range +-r is written up to its last sample inside it: drawn
+/// further, gnuplot's clipped line to the far-away value would look like a vertical wall.
+std::vector<SeriesFile> write_trajectories(const Comparison& c, double r, const Scratch& scratch) {
+  std::vector<SeriesFile> files;
+  auto write = [&](const std::string& model, const Trajectory& tr) {
+    SeriesFile f{model, scratch.file(model + ".dat"), std::nullopt};
+    std::ofstream out(scratch.path(f.path));
+    auto row = [&](std::size_t i) {
+      const Eigen::Vector3d k = axis_frame(tr.phi[i], tr.theta[i]).col(2);
+      return fmt::format("{} {} {} {} {} {}\n", tr.t[i], tr.theta[i], tr.phi[i], angle_error(tr, c.nonlinear, i), k.x(), k.y());
+    };
+    const std::vector<std::size_t> shown = display_samples(tr.size());
+    std::size_t next = 0;  // into shown
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+      if (!(std::abs(tr.theta[i]) <= r && std::abs(tr.phi[i]) <= r)) {
+        f.leaves_at = tr.t[i];
+        if (i > 0) {  // the line ends at the last sample inside, marked
+          out << row(i - 1);
+          std::ofstream(scratch.path(model + ".exit")) << row(i - 1);
+        }
+        break;
+      }
+      if (next < shown.size() && shown[next] == i) {
+        // theta = atan2(k_xi, k_zeta) jumps by 2 pi when the axis passes below the horizontal:
+        // a blank line breaks the curve there instead of drawing the jump as a wall.
+        if (next > 0 && std::abs(tr.theta[i] - tr.theta[shown[next - 1]]) > std::numbers::pi) out << "\n";
+        out << row(i);
+        ++next;
+      }
+    }
+    files.push_back(f);
+  };
+  for (const auto& m : c.models) write(m.model, m.trajectory);
+  write("nonlinear", c.nonlinear);
+  return files;
+}
+
+/// The plot command's list: one line per model, the truth last; a model that leaves the chart
+/// says when in its title and ends in a cross.
+std::string plot_list(const std::vector<SeriesFile>& files, const std::string& columns, bool skip_truth = false) {
   std::string list;
-  for (const auto& [model, path] : files) {
-    if (skip_truth && model == "nonlinear") continue;
-    list += fmt::format("{}'{}' using {} with lines {} title '{}'", list.empty() ? "" : ", \\\n  ", path,
-                        columns, line_style(model), model);
+  for (const SeriesFile& f : files) {
+    if (skip_truth && f.model == "nonlinear") continue;
+    const std::string title = f.leaves_at ? fmt::format("{} (leaves at {:.3g} s)", f.model, *f.leaves_at)
+                                          : f.model == "nonlinear" ? std::string("nonlinear (truth)") : f.model;
+    list += fmt::format("{}'{}' using {} with lines {} title '{}'", list.empty() ? "" : ", \\\n  ", f.path, columns,
+                        line_style(f.model), title);
+    if (f.leaves_at)
+      list += fmt::format(", \\\n  '{}.exit' using {} with points pt 2 ps 2.5 lw 3 lc rgb '{}' notitle", f.model, columns,
+                          kStyles.at(f.model).color);
   }
   return list + "\n";
 }
 
 }  // namespace
 
+std::pair<const char*, const char*> diagram_words(const Body& body) {
+  return body.length < 0.0 ? std::pair{"axis stays near the vertical", "axis swings out"} : std::pair{"stays up", "falls"};
+}
+
+std::vector<std::size_t> display_samples(std::size_t n) {
+  const std::size_t stride = n > kDisplaySamples ? (n - 1 + kDisplaySamples - 2) / (kDisplaySamples - 1) : 1;
+  std::vector<std::size_t> shown;
+  for (std::size_t i = 0; i < n; i += stride) shown.push_back(i);
+  if (n && shown.back() != n - 1) shown.push_back(n - 1);
+  return shown;
+}
+
+AngleUnit angle_unit(const Comparison& c) {
+  return angle_range(c) < 0.2 ? AngleUnit{1e3, "mrad"} : AngleUnit{1.0, "rad"};
+}
+
+double angle_error(const Trajectory& model, const Trajectory& truth, std::size_t i) {
+  return std::max(std::abs(model.theta[i] - truth.theta[i]), std::abs(model.phi[i] - truth.phi[i]));
+}
+
 std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   const Scratch scratch(dir);
-  const auto files = write_trajectories(c, scratch);  // once, for all three figures
   const double r = angle_range(c);
+  const auto files = write_trajectories(c, r, scratch);  // once, for all three figures
+  const AngleUnit unit = angle_unit(c);
   std::vector<Figure> figures;
+  // The key in its own column right of the frames (long titles never reach into them).
+  const char* key = "set key outside right top Left reverse width 1\nset rmargin at screen 0.68\n";
 
   std::string angles = fmt::format(
       "set multiplot layout 2,1 title 'Angles of the axis: every model from the same start'\n"
-      "set grid\nset key outside right top\nset rmargin at screen 0.8\nset yrange [{0}:{1}]\nset format y '%.1e'\n"
-      "set ylabel 'theta (rad)'\nunset xlabel\n",
-      -r, r);
-  angles += "plot " + plot_list(files, "1:2");
-  angles += "set ylabel 'phi (rad)'\nset xlabel 't (s)'\nunset key\n";
-  angles += "plot " + plot_list(files, "1:3");
+      "set grid\n{0}set yrange [{1}:{2}]\nset format y '%g'\nset ylabel 'theta ({3})'\nunset xlabel\n",
+      key, -r * unit.scale, r * unit.scale, unit.name);
+  const std::string theta = fmt::format("1:($2*{})", unit.scale), phi = fmt::format("1:($3*{})", unit.scale);
+  angles += "plot " + plot_list(files, theta);
+  angles += fmt::format("set ylabel 'phi ({})'\nset xlabel 't (s)'\nunset key\n", unit.name);
+  angles += "plot " + plot_list(files, phi);
   angles += "unset multiplot\n";
-  figures.push_back(render("angles", "theta(t) and phi(t) of every model; the nonlinear body (black) is the truth, and models that diverge leave the chart.", angles, scratch, 1400, 1000));
+  figures.push_back(render("angles", "theta(t) and phi(t) of every model; the nonlinear body (black, drawn on top) is "
+                           "the truth; a model that leaves the chart ends in a cross, its title says when.",
+                           angles, scratch, 1500, 1000));
 
+  // From above (looking down zeta, xi to the right, eta up) the tip of the unit axis is at
+  // (k_xi, k_eta) = (sin theta cos phi, -sin phi), to first order (theta, -phi): plotting
+  // (theta, phi) would show the mirror image, the precession turning the wrong way.
   std::string path = fmt::format(
-      "set title 'Path of the axis tip: nutation loops and cusps'\nset grid\nset size ratio -1\n"
-      "set key outside right top\nset xrange [{0}:{1}]\nset yrange [{0}:{1}]\nset format x '%.2g'\nset format y '%.2g'\n"
-      "set xtics rotate by -35\n"
-      "set xlabel 'theta (rad)'\nset ylabel 'phi (rad)'\nplot ",
-      -r, r);
-  path += plot_list(files, "2:3");
-  figures.push_back(render("axis-path", "The tip of the axis seen from above (theta against phi), every model.", path, scratch, 1300, 1000));
+      "set title 'Path of the axis tip seen from above: nutation loops and cusps'\nset grid\nset size ratio -1\n"
+      "{0}set xrange [{1}:{2}]\nset yrange [{1}:{2}]\nset format x '%g'\nset format y '%g'\n"
+      "set xlabel 'xi: k_{{xi}} ({3}), about theta'\nset ylabel 'eta: k_{{eta}} ({3}), about -phi'\nplot ",
+      key, -std::min(r, 1.05) * unit.scale, std::min(r, 1.05) * unit.scale, unit.name);  // |k_xi|, |k_eta| <= 1
+  path += plot_list(files, fmt::format("($5*{0}):($6*{0})", unit.scale));
+  figures.push_back(render("axis-path", "The tip of the axis seen from above (xi to the right, eta up; to first order "
+                           "(theta, -phi)), every model: the nutation loops and cusps as the precession carries them round.",
+                           path, scratch, 1500, 1000));
 
-  std::string errors =
-      "set title 'Error of each model against the nonlinear body'\nset grid\nset logscale y\n"
-      "set format y '10^{%L}'\nset key outside right top\nset xlabel 't (s)'\n"
-      "set ylabel 'max(|d theta|, |d phi|) (rad)'\nplot ";
+  std::string errors = std::string("set title 'Error of each model against the nonlinear body'\nset grid\nset logscale y\n"
+                                   "set format y '10^{%L}'\n") + key +
+                       "set xlabel 't (s)'\nset ylabel 'max(|d theta|, |d phi|) (rad)'\nplot ";
   // A model exact to rounding everywhere (the sleeping top: nothing moves) has no point to
   // draw on a log scale; then the chart says so instead of failing.
   double largest = 0.0;
@@ -181,11 +250,11 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   if (largest > 1e-17) errors += plot_list(files, "1:($4 > 1e-17 ? $4 : 1/0)", true);
   else errors += fmt::format("[0:{}] [1e-18:1e-15] 1e-17 with lines lc rgb '#888888' title 'every model: error below 1e-17 rad'\n",
                              c.nonlinear.t.empty() || c.nonlinear.t.back() <= 0.0 ? 1.0 : c.nonlinear.t.back());
-  figures.push_back(render("errors", "The angle error of each model against time, on a log scale.", errors, scratch));
+  figures.push_back(render("errors", "The angle error of each model against time, on a log scale.", errors, scratch, 1500, 900));
   return figures;
 }
 
-Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state) {
+Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state, DiagramGrid* grid) {
   const Scratch scratch(dir);
   // B/A over every value a real body allows with A and C held, |C - A| <= B <= C + A.
   const auto [lo, hi] = realizable_ratio_range(body);
@@ -227,19 +296,23 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
   }
   up.close();
   falls.close();
+  if (grid) *grid = DiagramGrid{axes, verdicts, start.theta0, options.max_tilt, options.horizon};
+  // "Stands up" is a top's word; a hanging body (R < 0) hangs, its axis stays near the vertical.
+  const bool hanging = body.length < 0.0;
 
   std::string plot = fmt::format(
-      "set title 'Where the top stands up (A = {:g}, C = {:g} kg m^2 held)'\n"
+      "set title '{} (A = {:g}, C = {:g} kg m^2 held)'\n"
       "set grid\nset key outside below center maxrows 2 width -2\nset xlabel 'B/A'\nset ylabel 'spin w0 (rad/s)'\n"
       "set xrange [{}:{}]\nset yrange [0:{}]\n"
       "plot '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#1f77b4' title 'ends of stable spins: first-order (4)', \\\n"
       "  '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#ff7f0e' title 'body-fixed (5)', \\\n"
       "  '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#2ca02c' title 'linearized (exact)', \\\n"
-      "  '{}' using 1:2 with points pt 6 ps 1.4 lw 2 lc rgb '#2ca02c' title 'nonlinear: stays up', \\\n"
-      "  '{}' using 1:2 with points pt 2 ps 1.4 lw 2 lc rgb '#d62728' title 'nonlinear: falls', \\\n"
+      "  '{}' using 1:2 with points pt 6 ps 1.4 lw 2 lc rgb '#2ca02c' title 'nonlinear: {}', \\\n"
+      "  '{}' using 1:2 with points pt 2 ps 1.4 lw 2 lc rgb '#d62728' title 'nonlinear: {}', \\\n"
       "  '-' using 1:2 with points pt 3 ps 3 lw 3 lc rgb 'black' title 'this body'\n{} {}\ne\n",
-      body.A, body.C, lo, hi, top, scratch.file("first-order.ends"), scratch.file("body-fixed.ends"),
-      scratch.file("linearized.ends"), scratch.file("up.dat"), scratch.file("falls.dat"), body.B / body.A,
+      hanging ? "Where the hanging body spins steadily" : "Where the top stands up", body.A, body.C, lo, hi, top,
+      scratch.file("first-order.ends"), scratch.file("body-fixed.ends"), scratch.file("linearized.ends"),
+      scratch.file("up.dat"), diagram_words(body).first, scratch.file("falls.dat"), diagram_words(body).second, body.B / body.A,
       std::abs(state.spin));
   return render("stability-diagram",
                 "Ends of the stable spin intervals of each linear model as B/A varies, and the nonlinear body's "
@@ -319,6 +392,50 @@ Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes
   return render("stability-map",
                 "Each grid point coloured by the verdicts of (4) and of the exact linearisation: red where the "
                 "paper promises a stability that is not there, blue where it is too strict.",
+                plot, scratch, 1500, 950);
+}
+
+Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life) {
+  const Scratch scratch(dir);
+  // The run to a little past the fall (or over the horizon), sampled for the eye.
+  const double end = life.fall_time ? std::min(life.horizon, 1.05 * *life.fall_time) : life.horizon;
+  const Simulation run = simulate(Model::Nonlinear, body, state, sample_times(end, kDisplaySamples));
+  const Trajectory& tr = run.trajectory;
+  const std::vector<double>* axial = nullptr;
+  for (const auto& [name, column] : tr.extra)
+    if (name == "axial_momentum") axial = &column;
+  const std::string data = scratch.file("lifetime.dat");
+  {
+    std::ofstream out(scratch.path(data));
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+      // The tilt from the upward vertical, acos(k_zeta), k_zeta = cos theta cos phi (SPEC section 2).
+      const double tilt = std::acos(std::clamp(std::cos(tr.theta[i]) * std::cos(tr.phi[i]), -1.0, 1.0));
+      out << fmt::format("{} {} {}\n", tr.t[i], axial ? (*axial)[i] / body.C : state.spin, tilt);
+    }
+  }
+  std::string marks;
+  if (life.critical_spin && *life.critical_spin > 0.0)
+    marks += fmt::format("{:g} axes x1y1 with lines dt 2 lw 2 lc rgb '#d62728' title 'critical spin {:.4g} rad/s', ",
+                         *life.critical_spin, *life.critical_spin);
+  std::string arrows;
+  if (life.time_to_critical && *life.time_to_critical > 0.0)
+    arrows += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead dt 3 lc rgb '#d62728'\n"
+                          "set label 'spin law: critical at {0:.4g} s' at {0},graph 0.95 left offset 0.5,0 tc rgb '#d62728'\n",
+                          *life.time_to_critical);
+  if (life.fall_time)
+    arrows += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead lw 2 lc rgb '#000000'\n"
+                          "set label 'falls at {0:.4g} s' at {0},graph 0.85 right offset -0.5,0\n",
+                          *life.fall_time);
+  const std::string plot = fmt::format(
+      "set title 'How long it stays up'\nset grid\nset key outside below center maxrows 2\n"
+      "set xlabel 't (s)'\nset ylabel 'spin w.k (rad/s)'\nset y2label 'tilt from the vertical (rad)'\n"
+      "set ytics nomirror\nset y2tics\nset xrange [0:{}]\nset yrange [0:*]\nset y2range [0:*]\n{}"
+      "plot {}'{}' using 1:2 axes x1y1 with lines lw 3 lc rgb '#1f77b4' title 'spin (integrated)', "
+      "'' using 1:3 axes x1y2 with lines lw 2 lc rgb '#2ca02c' title 'tilt (nonlinear, damped)'\n",
+      end, arrows, marks, data);
+  return render("lifetime",
+                "The spin and the tilt of the damped top against time: the spin decays by the torques of SPEC "
+                "section 6 through the critical spin (dashed), after which the tilt grows until the top falls.",
                 plot, scratch, 1500, 950);
 }
 

@@ -5,15 +5,18 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/output.hpp"
+#include "heavytop/report/animation.hpp"
 #include "heavytop/report/figures.hpp"
 #include "heavytop/report/report.hpp"
 #include "heavytop/compare.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
 #include "heavytop/sweep.hpp"
+#include "web_assets.hpp"
 
 namespace heavytop::report {
 using io::write_output;
@@ -113,6 +116,141 @@ std::string comparison_html(const Comparison& c) {
          "<th>rel. error</th><th>precession (rad/s)</th><th>rel. error</th></tr>\n" + rows + "</table>";
 }
 
+/// Six significant digits: enough for a screen, a third of the bytes of a double's 17.
+double display(double x) { return std::stod(fmt::format("{:.6g}", x)); }
+
+/// The report's numbers for its page script (report/web/src/main.js), as a classic script that
+/// assigns window.HEAVYTOP_REPORT (pages opened from file:// may not fetch() a JSON file).
+std::string page_data_js(const Body& body, const InitialState& state, const Comparison& c,
+                         const std::vector<SweepAxis>& map_axes, const std::vector<SweepVerdict>& map,
+                         const DiagramGrid& diagram) {
+  using nlohmann::json;
+  const std::size_t n = c.nonlinear.size();
+  const std::vector<std::size_t> shown = display_samples(n);
+  // A value that is not finite, or past the end of a model's trajectory (one that stopped on a
+  // numerical failure), is null: the page leaves a gap, never a made-up number.
+  auto value = [](const std::vector<double>& v, std::size_t i) {
+    return i < v.size() && std::isfinite(v[i]) ? json(display(v[i])) : json(nullptr);
+  };
+  auto pick = [&](const std::vector<double>& v) {
+    json a = json::array();
+    for (std::size_t i : shown) a.push_back(value(v, i));
+    return a;
+  };
+  const std::vector<double> psi = spin_angles(body, c.nonlinear);
+  double spin_rate = 0.0;  // rad/s, the fastest spin of the samples (for the page's aliasing note)
+  for (std::size_t i = 1; i < n; ++i)
+    if (c.nonlinear.t[i] > c.nonlinear.t[i - 1])
+      spin_rate = std::max(spin_rate, std::abs(psi[i] - psi[i - 1]) / (c.nonlinear.t[i] - c.nonlinear.t[i - 1]));
+  // Playback: the fastest of these speeds at which the spin turns at most 30 degrees a frame
+  // (60 frames a second) and the motion lasts at least 8 s; else the slowest.
+  const std::vector<double> speeds{1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0};
+  const double horizon = n ? c.nonlinear.t.back() : 0.0;
+  double speed = speeds.front();
+  for (double s : speeds)
+    if (s * spin_rate / 60.0 <= std::numbers::pi / 6.0 && horizon / s >= 8.0) speed = s;
+
+  json models = json::array();
+  for (const auto& m : c.models) {
+    json errors = json::array();
+    for (std::size_t i : shown)
+      errors.push_back(i < m.trajectory.size() ? value({angle_error(m.trajectory, c.nonlinear, i)}, 0) : json(nullptr));
+    models.push_back({{"name", m.model}, {"theta", pick(m.trajectory.theta)}, {"phi", pick(m.trajectory.phi)},
+                      {"error", errors}, {"diverged_at", m.diverged_at ? json(*m.diverged_at) : json(nullptr)}});
+  }
+  const EquivalentEllipsoid shape = equivalent_ellipsoid(body);
+  const AngleUnit unit = angle_unit(c);
+  auto axis = [](const SweepAxis& a) {
+    const std::string label = a.key == "spin" ? "spin w0 (rad/s)" : a.key;
+    return json{{"key", a.key}, {"start", a.start}, {"stop", a.stop}, {"count", a.count}, {"label", label}};
+  };
+  std::string verdicts, certificates;
+  for (const SweepVerdict& v : map) {
+    verdicts += "0123456789abcdef"[int(v.linear[0]) | int(v.linear[1]) << 1 | int(v.linear[2]) << 2 | int(v.lyapunov) << 3];
+    certificates += char('0' + int(v.lyapunov_certificate));
+  }
+  json certificate_names = json::array();
+  for (int k = 0; k <= int(LyapunovCertificate::None); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
+  json points = json::array();
+  for (std::size_t i = 0; i < diagram.verdicts.size(); ++i) {
+    const auto p = grid_values(diagram.axes, i);
+    points.push_back({display(p[0]), display(p[1]), diagram.verdicts[i].nonlinear.value_or(false) ? 1 : 0});
+  }
+  const auto [up_word, down_word] = diagram_words(body);
+  const json data = {
+      {"body", {{"A", body.A}, {"B", body.B}, {"C", body.C}, {"mass", body.mass}, {"gravity", body.gravity}, {"length", body.length}}},
+      {"spin", state.spin},
+      {"t", pick(c.nonlinear.t)},
+      {"display", {{"samples", shown.size()}, {"computed_samples", n}}},
+      {"nonlinear", {{"theta", pick(c.nonlinear.theta)}, {"phi", pick(c.nonlinear.phi)}, {"psi", pick(psi)}}},
+      {"models", models},
+      {"angle_scale", unit.scale},
+      {"angle_unit", unit.name},
+      {"shape", {{"semi_axes", shape.semi_axes}, {"centre", shape.centre}, {"note", shape.note}}},
+      {"playback", {{"speed", speed}, {"speeds", speeds}, {"spin_rate", spin_rate}}},
+      {"map", {{"x", axis(map_axes[0])}, {"y", axis(map_axes[1])}, {"verdicts", verdicts}, {"certificates", certificates}}},
+      {"certificates", certificate_names},
+      {"diagram", {{"points", points}, {"start_tilt", diagram.start_tilt}, {"max_tilt", diagram.max_tilt},
+                   {"horizon", diagram.horizon}, {"up_word", up_word}, {"down_word", down_word}}},
+      {"body_point", {body.B / body.A, std::abs(state.spin)}},
+      {"cli_body", fmt::format("--A {:g} --C {:g} --mass {:g} --gravity {:g} --length {:g}", body.A, body.C, body.mass,
+                               body.gravity, body.length)},
+      {"cli_start", fmt::format("--theta0 {:g} --phi0 {:g} --theta-rate0 {:g} --phi-rate0 {:g} --t-end {:g} --samples 2001",
+                                state.theta0, state.phi0, state.theta_rate0, state.phi_rate0, horizon)},
+  };
+  return "// Written by heavytop report: the numbers behind report.html's interactive view.\nwindow.HEAVYTOP_REPORT = " +
+         data.dump() + ";\n";
+}
+
+/// The 3D view (drawn by heavytop-report.js), first on the page: what a lecture projects. In a
+/// build without the page script, a note instead; the static figures follow in both cases.
+std::string view_html(const Comparison& c, const EquivalentEllipsoid& shape) {
+  if (const char* why = detail::web_assets_missing())
+    return fmt::format("<p class='note' id='no-interactive'>No interactive view in this report: {}. The static "
+                       "figures below show the same motion.</p>\n", html_escape(why));
+  std::string boxes;
+  for (const auto& m : c.models)
+    boxes += fmt::format("<label><input type='checkbox' id='overlay-{0}'> {0}{1}</label> ", m.model,
+                         m.diverged_at ? fmt::format(" (diverges at {:.3g} s)", *m.diverged_at) : "");
+  return fmt::format(R"(<section id='interactive'>
+<h2>Watch it move</h2>
+<p>The full nonlinear motion. The body is drawn as the uniform ellipsoid with its mass and moments (centre of mass at R on
+the spin axis){0}. The red sector and ball on its rim turn with the body at its true spin angle; black: the fixed point O,
+the vertical (dashed) and the path of the axis's tip. Drag to turn the view, scroll to zoom. Inset (bottom right):
+straight down on the tip, xi to the right, eta up, <span id='inset-scale'></span> from centre to edge.</p>
+<div id='scene'></div>
+<div class='controls'><button id='play'>Pause</button>
+<label>speed <input type='range' id='speed' min='0' max='1' step='1'> <span id='speed-value'></span></label>
+<label>time <input type='range' id='scrub' min='0' max='10000' value='0' step='1'></label> <span id='time'></span></div>
+<p class='controls'>Overlay each approximate model's axis (its tip's path in its colour) beside the nonlinear one: {1}</p>
+<p class='note' id='spin-note' hidden></p>
+<p><small>Display data: {2} of the {3} computed samples (six digits); <a href='trajectories.csv'>trajectories.csv</a>
+has them all.</small></p>
+</section>
+)",
+                     shape.note.empty() ? "" : fmt::format(" (not to scale: {})", html_escape(shape.note)), boxes,
+                     display_samples(c.nonlinear.size()).size(), c.nonlinear.size());
+}
+
+/// The interactive plots and the stability explorer (nothing without the page script).
+std::string plots_html(const Body& body) {
+  if (detail::web_assets_missing()) return "";
+  return fmt::format(R"(<section id='interactive-plots'>
+<h2>Interactive plots</h2>
+<p>Drag to zoom (double-click to reset), hover for values, click a legend entry to hide or show its curve; click a
+time to show that moment in the 3D view above.</p>
+<div id='plots'></div>
+<h2>Stability explorer</h2>
+<p>The stability map's grid (colours as in the map below: green both (4) and the exact linearisation stable, red only (4),
+blue only the exact one, grey neither) with the diagram's nonlinear runs (white circles: {0}; black crosses: {1}) and this
+body (black +). Click a point for its verdicts.</p>
+<canvas id='explorer' width='1000' height='560'></canvas>
+<div id='explorer-info'><p>Click the map.</p></div>
+</section>
+)",
+                     diagram_words(body).first, diagram_words(body).second);
+}
+
 constexpr const char* kStyle = R"(
 body { font-family: "DejaVu Sans", Arial, sans-serif; max-width: 1100px; margin: 2em auto; color: #222; line-height: 1.45; }
 h1 { font-size: 1.8em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: .2em; margin-top: 2em; }
@@ -120,6 +258,11 @@ table { border-collapse: collapse; margin: 1em 0; } td, th { border: 1px solid #
 th { background: #f2f2f2; } td.ok { color: #1a7f1a; font-weight: bold; } td.bad { color: #c62828; font-weight: bold; }
 figure { margin: 1.5em 0; } figure img { width: 100%; border: 1px solid #ddd; } figcaption { color: #555; font-size: .95em; }
 .note { background: #fff8e1; border-left: 4px solid #f9a825; padding: .5em 1em; }
+#scene { width: 100%; } #scene canvas { display: block; border: 1px solid #ddd; }
+.controls { display: flex; flex-wrap: wrap; gap: .6em 1.4em; align-items: center; margin: .6em 0; }
+.controls button { font-size: 1em; padding: .25em 1.2em; } #scrub { width: 22em; }
+.plot { margin: 1em 0; } #explorer { width: 100%; max-width: 1000px; border: 1px solid #ddd; cursor: crosshair; }
+b.ok { color: #1a7f1a; } b.bad { color: #c62828; }
 )";
 
 }  // namespace
@@ -162,16 +305,25 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   const Wander wander = axis_wander(body, state, horizon);
 
   std::vector<Figure> figures = plot_motion(staging.path(), c);
-  figures.push_back(plot_stability_diagram(staging.path(), body, state));
+  DiagramGrid diagram;
+  figures.push_back(plot_stability_diagram(staging.path(), body, state, &diagram));
   figures.push_back(plot_wander(staging.path(), body, reports[2].critical));
   // The stability map: B/A over the values a real body allows, spin up to well past the truth's threshold.
   const auto [lo, hi] = realizable_ratio_range(body);
   double top = std::max(2.0 * std::abs(state.spin), 1e-9);
   for (const auto& r : reports)
     if (r.kind != LinearModelKind::BodyFixed && r.critical) top = std::max(top, 2.0 * *r.critical);
-  const std::vector<SweepAxis> axes{{"B/A", lo, hi, 200}, {"spin", 0.0, top, 200}};
+  // 160 x 160: the map reads as finely as at 200 x 200, and its CSV (every point computed,
+  // 1.4 MB) keeps the folder of the built-in example under 5 MB.
+  const std::vector<SweepAxis> axes{{"B/A", lo, hi, 160}, {"spin", 0.0, top, 160}};
   const auto verdicts = sweep_verdicts(body, state, axes, SweepOptions{}, 0, grid_size(axes));
   figures.push_back(plot_sweep_map(staging.path(), axes, verdicts));
+  // With damping: how long it stays up (SPEC section 8).
+  std::optional<Lifetime> life;
+  if (!body.damping.conservative()) {
+    life = lifetime(body, state);
+    figures.push_back(plot_lifetime(staging.path(), body, state, *life));
+  }
 
   std::vector<std::pair<std::string, std::string>> data = {
       {"stability.json", io::stability_json(body, state.spin, reports, lyapunov, wander)},
@@ -180,10 +332,16 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       {"trajectories.csv", all_trajectories_csv(c)},
       {"stability-map.csv", io::sweep_csv_header(axes, false) + io::sweep_csv_rows(axes, 0, verdicts)},
   };
+  if (life) data.emplace_back("lifetime.json", io::lifetime_json(*life));
+  const auto assets = detail::web_assets();
+  if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram));
 
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop report</title><style>"
-       << kStyle << "</style></head><body>\n<h1>heavytop: the heavy top, its models and the truth</h1>\n";
+  html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop report</title><style>" << kStyle
+       << "</style>\n";
+  // Classic scripts beside the page (file:// allows no module imports and no fetch()).
+  if (!assets.empty()) html << "<script src='report-data.js'></script>\n<script src='heavytop-report.js' defer></script>\n";
+  html << "</head><body>\n<h1>heavytop: the heavy top, its models and the truth</h1>\n";
   html << fmt::format(
       "<p>Body: A = {:g}, B = {:g}, C = {:g} kg&nbsp;m&sup2;, m = {:g} kg, g = {:g} m/s&sup2;, R = {:g} m "
       "(m g R = {:g} N&nbsp;m, {}). Spin w0 = {:g} rad/s ({:.0f} rpm); start theta0 = {:g}, phi0 = {:g} rad, "
@@ -191,6 +349,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       body.A, body.B, body.C, body.mass, body.gravity, body.length, body.mgR(),
       body.length > 0 ? "centre of mass above the pivot" : body.length < 0 ? "hanging" : "centre of mass at the pivot",
       state.spin, state.spin * 30.0 / std::numbers::pi, state.theta0, state.phi0, state.theta_rate0, state.phi_rate0);
+  html << view_html(c, equivalent_ellipsoid(body));
   html << "<h2>Is it stable?</h2>\n<p><i>first-order</i> is the paper's model (4) and its condition (9); "
           "<i>body-fixed</i> its model (5), which the paper itself calls erroneous; <i>linearized</i> the exact "
           "linearisation about the upright spin, the one to trust.</p>\n"
@@ -212,10 +371,16 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       wander.max_tilt ? fmt::format(" From the given start the axis tilts at most {:.4g} rad ({}).", *wander.max_tilt,
                                     wander.closed_form ? "closed form" : "integrated")
                       : std::string());
+  if (life)
+    html << "<h2>How long does it stay up?</h2>\n<p>" << html_escape(io::lifetime_text(body, state, *life))
+         << "</p>\n<p>The figure <i>lifetime</i> below shows the spin and the tilt against time "
+            "(<a href='lifetime.json'>lifetime.json</a>: as <code>heavytop lifetime --format json</code>).</p>\n";
   html << "<h2>How does it move?</h2>\n<p>Every model from the same start over " << fmt::format("{:.4g}", horizon)
        << " s, against the full nonlinear body (" << c.summary.steps << " integrator steps, relative energy drift "
        << fmt::format("{:.1e}", c.summary.max_relative_energy_drift) << ").</p>\n"
        << comparison_html(c);
+  html << plots_html(body);
+  html << "<h2>Figures (for print)</h2>\n";
   for (const Figure& f : figures)
     html << fmt::format("<figure><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "
                         "<a href='{0}.svg'>SVG</a>)</figcaption></figure>\n",
@@ -224,9 +389,14 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   html << "<h2>Data</h2>\n<ul><li><a href='stability.json'>stability.json</a>: as <code>heavytop stability --format json</code></li>"
           "<li><a href='comparison.json'>comparison.json</a>, <a href='comparison.csv'>comparison.csv</a>: as "
           "<code>heavytop compare</code></li><li><a href='trajectories.csv'>trajectories.csv</a>: theta, phi of every "
-          "model (rad) against t (s)</li><li><a href='stability-map.csv'>stability-map.csv</a>: the map's verdicts</li></ul>\n"
+          "model (rad) against t (s)</li><li><a href='stability-map.csv'>stability-map.csv</a>: the map's verdicts</li>"
+       << (assets.empty() ? "" : "<li><a href='report-data.js'>report-data.js</a>: what the interactive view draws "
+                                 "(decimated for display, six digits), with the spin angle psi of the nonlinear body</li>")
+       << "</ul>\n"
           "<p><small>Made by heavytop. Units SI; angles as in SPEC.md section 2.</small></p>\n</body></html>\n";
-  data.emplace_back("report.html", html.str());
+  for (const auto& asset : assets)
+    data.emplace_back(asset.name, std::string(reinterpret_cast<const char*>(asset.data), asset.size));
+  data.emplace_back("report.html", html.str());  // last: the page appears when all it needs is there
 
   // Everything is made: put it in place, each file by a temporary name and a rename.
   for (const Figure& f : figures)

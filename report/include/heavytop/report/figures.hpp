@@ -5,9 +5,11 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "heavytop/compare.hpp"
+#include "heavytop/lifetime.hpp"
 #include "heavytop/sweep.hpp"
 
 namespace heavytop::report {
@@ -21,13 +23,48 @@ struct Figure {
   std::string caption;  ///< one sentence for a reader
 };
 
+/// The most samples of a motion that the figures and the page draw: 1001 across a chart
+/// 1000-odd pixels wide loses nothing a reader sees (display only: trajectories.csv keeps
+/// every computed sample).
+inline constexpr std::size_t kDisplaySamples = 1001;
+/// The samples drawn of `n`: every stride-th (stride the smallest that keeps at most
+/// kDisplaySamples), and the last.
+std::vector<std::size_t> display_samples(std::size_t n);
+
+/// How the report shows the axis's angles: in mrad when the true motion stays within 0.2 rad
+/// (tick labels like 8.0e-02 rad read worse than 80 mrad), else in rad.
+struct AngleUnit {
+  double scale = 1.0;         ///< shown value = angle in rad * scale
+  std::string name = "rad";   ///< "rad" or "mrad"
+};
+AngleUnit angle_unit(const Comparison& comparison);
+
+/// rad, max(|d theta|, |d phi|) of `model` against `truth` at sample i (both at the same times).
+double angle_error(const Trajectory& model, const Trajectory& truth, std::size_t i);
+
+/// The nonlinear runs behind the stability diagram: one per grid point, started start_tilt
+/// off vertical, "stays up" when the tilt stays <= max_tilt over horizon.
+struct DiagramGrid {
+  std::vector<SweepAxis> axes;         ///< B/A, then spin (rad/s)
+  std::vector<SweepVerdict> verdicts;  ///< grid order (sweep_verdicts)
+  double start_tilt = 0.0;             ///< rad
+  double max_tilt = 0.0;               ///< rad
+  double horizon = 0.0;                ///< s
+};
+
+/// How the diagram names the nonlinear verdicts: ("stays up", "falls") for a top, and for a
+/// hanging body (R < 0), which does not stand up, ("axis stays near the vertical", "axis swings out").
+std::pair<const char*, const char*> diagram_words(const Body& body);
+
 /// The motion of every model, three figures from one set of data: "angles" (theta(t) and
-/// phi(t) overlaid, two panels), "axis-path" (theta against phi: nutation loops and cusps),
-/// "errors" (each approximate model's angle error against time, log scale).
+/// phi(t) overlaid, two panels), "axis-path" (the tip seen from above, (k_xi, k_eta), to first
+/// order (theta, -phi): loops and cusps), "errors" (each approximate model's angle error against time, log scale).
 std::vector<Figure> plot_motion(const std::string& dir, const Comparison& comparison);
 /// Stable spins against B/A for the three linear models, with nonlinear verdicts on a grid
-/// and the body itself marked: erratum E3 at a glance.
-Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state);
+/// and the body itself marked: erratum E3 at a glance. `grid`, if not null, receives the
+/// nonlinear runs' grid and verdicts (the report's clickable explorer shows them).
+Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state,
+                              DiagramGrid* grid = nullptr);
 /// How far the axis wanders: the largest tilt against the spin for a start delta = 1e-3 and
 /// 1e-2 rad off vertical (log scale), the exact linearisation's critical spin marked: the
 /// sqrt(2 delta) plateau at the boundary of (9) and the jump below it (erratum E2). Exact
@@ -36,5 +73,10 @@ Figure plot_wander(const std::string& dir, const Body& body, std::optional<doubl
 /// A two-parameter sweep's map as a heat map: where (4) and the linearisation agree or not.
 Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
                       const std::vector<SweepVerdict>& verdicts);
+
+/// How long a damped top stays up (SPEC section 8): its spin w.k and its tilt against time
+/// from the damped nonlinear run of `life`, the critical spin as a line, the time the spin law
+/// reaches it and the fall marked.
+Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life);
 
 }  // namespace heavytop::report

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
 /// The report: one folder a person can open from disk (report.html, its figures as PNG and
-/// SVG drawn by gnuplot, the data behind them as CSV and JSON); nothing is fetched from a
-/// network (SPEC section 5).
+/// SVG drawn by gnuplot, the data behind them as CSV and JSON, and, when the build had npm,
+/// the interactive page's script heavytop-report.js with its data report-data.js); nothing is
+/// fetched from a network (SPEC section 5).
 
 #include <optional>
 #include <string>
