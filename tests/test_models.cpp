@@ -105,6 +105,8 @@ const std::vector<Solver>& solvers() {
       {"linearized_analytic", Model::Linearized, LinearMethod::Analytic},
       {"linearized_numeric", Model::Linearized, LinearMethod::Numeric},
       {"nonlinear_adaptive", Model::Nonlinear, {}, Integrator::Adaptive},
+      {"nonlinear_taylor", Model::Nonlinear, {}, Integrator::Taylor},
+      {"nonlinear_dop853", Model::Nonlinear, {}, Integrator::Dop853},
       {"nonlinear_splitting2", Model::Nonlinear, {}, Integrator::Splitting, 2},
       {"nonlinear_splitting4", Model::Nonlinear, {}, Integrator::Splitting, 4},
       {"lagrange_exact", Model::LagrangeExact},
@@ -180,8 +182,8 @@ TEST(EveryModel, EachModelHasItsSolversInTheTable) {
   for (Model m : kModels) {
     int n = 0;
     for (const Solver& s : solvers()) n += s.model == m;
-    // Two methods per linear model; adaptive + splitting 2 and 4 for the nonlinear one.
-    EXPECT_EQ(n, linear_kind(m) ? 2 : m == Model::Nonlinear ? 3 : 1) << name(m);
+    // Two methods per linear model; dopri5, taylor, dop853 + splitting 2 and 4 for the nonlinear one.
+    EXPECT_EQ(n, linear_kind(m) ? 2 : m == Model::Nonlinear ? 5 : 1) << name(m);
     EXPECT_EQ(model_from_name(name(m)), m);
   }
 }
@@ -298,7 +300,7 @@ TEST_P(EveryModelOnEveryBody, HasTheSpecColumnsAndEverySample) {
   EXPECT_EQ(summary.max_relative_energy_drift.has_value(), nonlinear);
   EXPECT_EQ(summary.max_relative_vertical_momentum_drift.has_value(), nonlinear);
   EXPECT_EQ(summary.max_relative_axial_momentum_drift.has_value(), nonlinear);
-  EXPECT_EQ(sim.adaptive.has_value(), nonlinear && s.integrator == Integrator::Adaptive);
+  EXPECT_EQ(sim.adaptive.has_value(), nonlinear && s.integrator != Integrator::Splitting);
   if (nonlinear) {
     EXPECT_GT(summary.steps, 0u);
     EXPECT_GT(summary.rhs_evaluations, 0u);
@@ -499,6 +501,7 @@ TEST_P(AdaptiveConvergence, ErrorFollowsTheTolerance) {
   std::string record;
   for (double tol : {1e-6, 1e-8, 1e-10}) {
     SimulateOptions o;
+    o.integrator = Integrator::Adaptive;
     o.adaptive.rtol = o.adaptive.atol = tol;
     const double error =
         max_angle_error(simulate(Model::Nonlinear, b.body, b.start, times, o).trajectory, exact);
@@ -558,7 +561,8 @@ TEST(IndependentRoute, OdeintOnRigidBodySystemMatchesBothNonlinearIntegrators) {
   EXPECT_GT(axial, 1e-6);
   RecordProperty("odeint_drifts_E_Lzeta_Cw3", sci(energy) + " " + sci(vertical) + " " + sci(axial));
 
-  for (const Solver& solver_case : {solver("nonlinear_adaptive"), solver("nonlinear_splitting4")}) {
+  for (const Solver& solver_case : {solver("nonlinear_adaptive"), solver("nonlinear_taylor"),
+                                    solver("nonlinear_dop853"), solver("nonlinear_splitting4")}) {
     BodyCase b{"asymmetric", body, s, 3.0, 1e-3};
     const Simulation sim = simulate(Model::Nonlinear, body, s, times, options_for(solver_case, b));
     ASSERT_TRUE(sim.summary.ok()) << sim.summary.message;
