@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -26,11 +27,27 @@ namespace {
 // A truncated power series in tau = t - t0: s(tau) = sum_n s[n] tau^n (normalised Taylor
 // coefficients, s[n] = s^(n)(t0) / n!). The solution's coefficients follow from x' = f(x):
 // x[n+1] = f[n] / (n + 1), f[n] the n-th coefficient of f(x(tau)), which for a polynomial f
-// is a sum of Cauchy products of the coefficients of x up to order n.
+// is a sum of Cauchy products sum_{j=0..n} a[j] b[n-j] of the coefficients up to order n.
 constexpr int kM = kTaylorMaxOrder;
-using Coefficients = std::array<double, kM + 1>;
+using Coefficients = std::array<double, kM + 1>;  // one series
 
-// The n-th coefficient of the product of two series: sum_{j=0..n} a[j] b[n-j].
+// The state's series, order by order: c[n][i] is coefficient n of variable i (7 used, the
+// 8th pads a row to two cache-line halves). A row per order lets one loop over j form every
+// Cauchy product of order n in SIMD pairs (SSE2, the x86-64 baseline) and Horner's rule run
+// on all variables at once.
+struct alignas(64) Jet {
+  double c[kM + 1][8];
+};
+
+using v2d = double __attribute__((vector_size(16)));
+inline v2d load2(const double* p) {
+  v2d v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline v2d splat(double a) { return v2d{a, a}; }
+
+// The n-th coefficient of the product of two series.
 inline double cauchy(const Coefficients& a, const Coefficients& b, int n) {
   double s = 0.0;
   for (int j = 0; j <= n; ++j) s += a[j] * b[n - j];
@@ -44,6 +61,23 @@ inline double horner(const Coefficients& s, int p, double tau) {
   return v;
 }
 
+// Every variable of the jet at tau (Horner, four pairs at a time).
+inline void horner(const Jet& x, int p, double tau, double* out) {
+  v2d v[4];
+  for (int i = 0; i < 4; ++i) v[i] = load2(&x.c[p][2 * i]);
+  const v2d t = splat(tau);
+  for (int n = p - 1; n >= 0; --n)
+    for (int i = 0; i < 4; ++i) v[i] = v[i] * t + load2(&x.c[n][2 * i]);
+  for (int i = 0; i < 4; ++i) std::memcpy(out + 2 * i, &v[i], sizeof v[i]);
+}
+
+// One variable's series out of the jet.
+inline Coefficients series_of(const Jet& x, int i, int p) {
+  Coefficients s{};
+  for (int n = 0; n <= p; ++n) s[n] = x.c[n][i];
+  return s;
+}
+
 // ---- The two sets of variables --------------------------------------------------------------------
 //
 // Both keep the attitude quaternion in slots 0..3 (w, x, y, z) and compute the series of the
@@ -51,48 +85,69 @@ inline double horner(const Coefficients& s, int p, double tau) {
 // m g R (gamma x e3) = m g R (gamma_2, -gamma_1, 0) needs them, and so does the tilt's rate
 // d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 (u = w, or v in the non-spinning frame).
 // gamma = R(q)^T e_zeta is quadratic in q for |q| = 1, which the exact flow keeps and every
-// step restores (commit()), so the right-hand side is a quadratic polynomial.
+// step restores (normalise()), so the right-hand side is a quadratic polynomial.
+//   gamma_1 = 2 (qx qz - qw qy),  gamma_2 = 2 (qy qz + qw qx).
 //
 // Damping torques linear in w (-d_t w_perp, -d_a (w.k) k, the friction issue) are linear
-// terms in the w (or v, w3) rows below: d_t/A w1[n] etc., at no extra Cauchy product.
+// terms in the w (or v, w3) rows below: - d_t/A w1[n] etc., at no extra Cauchy product.
 struct Gamma {
   Coefficients g1{}, g2{};
 };
 
-inline void gamma_coefficient(const std::array<Coefficients, 7>& x, Gamma& g, int n) {
-  const auto &qw = x[0], &qx = x[1], &qy = x[2], &qz = x[3];
-  g.g1[n] = 2.0 * (cauchy(qx, qz, n) - cauchy(qw, qy, n));
-  g.g2[n] = 2.0 * (cauchy(qy, qz, n) + cauchy(qw, qx, n));
+// The gamma products of order n accumulated by the loops below, as pairs:
+// (qx qz, qy qz) and (qw qy, qw qx).
+inline void gamma_terms(const double* a, const double* b, v2d& xz_yz, v2d& wy_wx) {
+  xz_yz += load2(a + 1) * splat(b[3]);
+  wy_wx += splat(a[0]) * v2d{b[2], b[1]};
+}
+inline void store_gamma(Gamma& g, int n, v2d xz_yz, v2d wy_wx) {
+  g.g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
+  g.g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
 }
 
 // The plain state of rigid_body.hpp: q (body to fixed), w in body axes. 19 Cauchy products
-// per order.
+// per order: q (x) w (all 12 pairs q_i w_m), gamma (4), w x I w (3).
 struct Plain {
   static constexpr int kSize = 7;
   static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
-  double a1, a2, a3, ka, kb;  // (B - C)/A, (C - A)/B, (A - B)/C (1), m g R / A, m g R / B (1/s^2)
+  double e1, e2, e3, ka, kb;  // (B - C)/A, (C - A)/B, (A - B)/C (1), m g R / A, m g R / B (1/s^2)
 
   explicit Plain(const Body& b)
-      : a1((b.B - b.C) / b.A), a2((b.C - b.A) / b.B), a3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
+      : e1((b.B - b.C) / b.A), e2((b.C - b.A) / b.B), e3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
         kb(b.mgR() / b.B) {}
 
   static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
 
-  // Coefficients 1..p of every variable from coefficient 0 (x[.][0]); g up to order p - 1.
-  void coefficients(std::array<Coefficients, 7>& x, Gamma& g, int p) const {
-    auto &qw = x[0], &qx = x[1], &qy = x[2], &qz = x[3], &w1 = x[4], &w2 = x[5], &w3 = x[6];
+  // Coefficients 1..p of every variable from row 0; gamma up to order p - 1.
+  void coefficients(Jet& x, Gamma& g, int p) const {
     for (int n = 0; n < p; ++n) {
-      gamma_coefficient(x, g, n);
+      v2d qw_w = {}, qx_w = {}, qy_w = {}, qz_w = {};  // q_i (w1, w2)
+      v2d wx_w3 = {}, yz_w3 = {};                      // (qw, qx) w3, (qy, qz) w3
+      v2d xz_yz = {}, wy_wx = {};                      // gamma
+      v2d w23_w31 = {};                                // (w2 w3, w3 w1)
+      double w12 = 0.0;                                // w1 w2
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d w = load2(b + 4), w3 = splat(b[6]);
+        qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
+        wx_w3 += load2(a) * w3, yz_w3 += load2(a + 2) * w3;
+        gamma_terms(a, b, xz_yz, wy_wx);
+        w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
+        w12 += a[4] * b[5];
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
       const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      double* next = x.c[n + 1];
       // q' = q (x) (0, w) / 2
-      qw[n + 1] = -half * (cauchy(qx, w1, n) + cauchy(qy, w2, n) + cauchy(qz, w3, n));
-      qx[n + 1] = half * (cauchy(qw, w1, n) + cauchy(qy, w3, n) - cauchy(qz, w2, n));
-      qy[n + 1] = half * (cauchy(qw, w2, n) + cauchy(qz, w1, n) - cauchy(qx, w3, n));
-      qz[n + 1] = half * (cauchy(qw, w3, n) + cauchy(qx, w2, n) - cauchy(qy, w1, n));
+      next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
+      next[1] = half * (qw_w[0] + yz_w3[0] - qz_w[1]);
+      next[2] = half * (qw_w[1] + qz_w[0] - wx_w3[1]);
+      next[3] = half * (wx_w3[0] + qx_w[1] - qy_w[0]);
       // Euler: I w' = (I w) x w + m g R (gamma x e3)
-      w1[n + 1] = inv * (a1 * cauchy(w2, w3, n) + ka * g.g2[n]);
-      w2[n + 1] = inv * (a2 * cauchy(w3, w1, n) - kb * g.g1[n]);
-      w3[n + 1] = inv * (a3 * cauchy(w1, w2, n));
+      next[4] = inv * (e1 * w23_w31[0] + ka * g.g2[n]);
+      next[5] = inv * (e2 * w23_w31[1] - kb * g.g1[n]);
+      next[6] = inv * (e3 * w12);
+      next[7] = 0.0;
     }
   }
 
@@ -104,7 +159,8 @@ struct Plain {
 // The spin-factored state of nonlinear.hpp for A == B: q = p (x) exp(psi e3 / 2) with
 // psi' = w3, p's frame N turns with the transverse angular velocity v = Rz(psi)(w1, w2) only.
 // For A == B, w3 is constant and psi drops out: v' = (C w3 / A) J v + (m g R / A) J gamma.
-// Slot 6 holds w3 (its series is the constant). 12 Cauchy products per order.
+// Slot 6 holds w3 (its series is the constant). 12 Cauchy products per order:
+// p (x) v (the 8 pairs p_i v_m) and gamma (4).
 struct SpinFactored {
   static constexpr int kSize = 7;
   static constexpr TaylorVariables kVariables = TaylorVariables::SpinFactored;
@@ -115,20 +171,30 @@ struct SpinFactored {
   // psi = 0 at the start: p = q, v = (w1, w2).
   static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
 
-  void coefficients(std::array<Coefficients, 7>& x, Gamma& g, int p) const {
-    auto &pw = x[0], &px = x[1], &py = x[2], &pz = x[3], &v1 = x[4], &v2 = x[5], &w3 = x[6];
-    const double nutation = c_over_a * w3[0];  // rad/s, C w3 / A
+  void coefficients(Jet& x, Gamma& g, int p) const {
+    const double nutation = c_over_a * x.c[0][6];  // rad/s, C w3 / A
     for (int n = 0; n < p; ++n) {
-      gamma_coefficient(x, g, n);
+      v2d pw_v = {}, px_v = {}, py_v = {}, pz_v = {};  // p_i (v1, v2)
+      v2d xz_yz = {}, wy_wx = {};                      // gamma
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d v = load2(b + 4);
+        pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
+        gamma_terms(a, b, xz_yz, wy_wx);
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
       const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double* row = x.c[n];
+      double* next = x.c[n + 1];
       // p' = p (x) (0, v1, v2, 0) / 2
-      pw[n + 1] = -half * (cauchy(px, v1, n) + cauchy(py, v2, n));
-      px[n + 1] = half * (cauchy(pw, v1, n) - cauchy(pz, v2, n));
-      py[n + 1] = half * (cauchy(pw, v2, n) + cauchy(pz, v1, n));
-      pz[n + 1] = half * (cauchy(px, v2, n) - cauchy(py, v1, n));
-      v1[n + 1] = inv * (-nutation * v2[n] + ka * g.g2[n]);
-      v2[n + 1] = inv * (nutation * v1[n] - ka * g.g1[n]);
-      w3[n + 1] = 0.0;
+      next[0] = -half * (px_v[0] + py_v[1]);
+      next[1] = half * (pw_v[0] - pz_v[1]);
+      next[2] = half * (pw_v[1] + pz_v[0]);
+      next[3] = half * (px_v[1] - py_v[0]);
+      next[4] = inv * (-nutation * row[5] + ka * g.g2[n]);
+      next[5] = inv * (nutation * row[4] - ka * g.g1[n]);
+      next[6] = 0.0;
+      next[7] = 0.0;
     }
   }
 
@@ -183,7 +249,7 @@ class TaylorIntegrator {
   int order() const { return order_; }
   double time() const { return t_; }
   double previous_time() const { return t_old_; }
-  const std::array<Coefficients, N>& series() const { return jet_; }
+  const Jet& series() const { return jet_; }
   const Gamma& gamma() const { return gamma_; }
 
   // One step from time(): the series at time(), its step, the state at its end. Afterwards
@@ -194,7 +260,8 @@ class TaylorIntegrator {
           "taylor: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
           "loosen rtol/atol)", max_steps_, t_));
     normalise();
-    for (int i = 0; i < N; ++i) jet_[i][0] = x_[i];
+    for (int i = 0; i < N; ++i) jet_.c[0][i] = x_[i];
+    jet_.c[0][7] = 0.0;
     system_.coefficients(jet_, gamma_, order_);
 
     // Jorba-Zou with componentwise weights: the error of component i, about |x_i[p]| h^p, is
@@ -203,8 +270,8 @@ class TaylorIntegrator {
     double norm_pm1 = 0.0, norm_p = 0.0;
     for (int i = 0; i < N; ++i) {
       const double weight = eps_ / (atol_ + rtol_ * std::abs(x_[i]));
-      norm_pm1 = std::max(norm_pm1, std::abs(jet_[i][order_ - 1]) * weight);
-      norm_p = std::max(norm_p, std::abs(jet_[i][order_]) * weight);
+      norm_pm1 = std::max(norm_pm1, std::abs(jet_.c[order_ - 1][i]) * weight);
+      norm_p = std::max(norm_p, std::abs(jet_.c[order_][i]) * weight);
     }
     const double rho = std::min(std::pow(norm_pm1, -1.0 / (order_ - 1)), std::pow(norm_p, -1.0 / order_));
     double h = rho * factor_;  // +inf when the series ends below order p - 1 (a polynomial motion)
@@ -216,7 +283,9 @@ class TaylorIntegrator {
 
     t_old_ = t_;
     h_ = h;
-    for (int i = 0; i < N; ++i) x_[i] = horner(jet_[i], order_, h);
+    double end[8];
+    horner(jet_, order_, h, end);
+    std::copy(end, end + N, x_.begin());
     t_ = (h == left) ? horizon_ : t_old_ + h;
     ++steps_;
     if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
@@ -231,8 +300,9 @@ class TaylorIntegrator {
       out = x_;
       return;
     }
-    const double tau = t - t_old_;
-    for (int i = 0; i < N; ++i) out[i] = horner(jet_[i], order_, tau);
+    double at[8];
+    horner(jet_, order_, t - t_old_, at);
+    std::copy(at, at + N, out.begin());
   }
 
   double step_size() const { return h_; }
@@ -271,7 +341,7 @@ class TaylorIntegrator {
   std::size_t steps_ = 0;
   Scales scales_;
   ConservedQuantities initial_;
-  std::array<Coefficients, N> jet_{};
+  Jet jet_{};
   Gamma gamma_;
   State x_;
   double t_ = 0.0, t_old_ = 0.0, h_ = 0.0;
@@ -366,13 +436,14 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
     // The series of d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 and of k_zeta = qw^2 - qx^2 - qy^2 + qz^2,
     // to order p (gamma to order p first: the recurrence stopped at p - 1).
     g = integrator.gamma();
-    std::array<Coefficients, 7> q{};
-    for (int i = 0; i < 4; ++i) q[i] = x[i];
-    gamma_coefficient(q, g, p);
-    const auto &u1 = x[System::kU1], &u2 = x[System::kU2];
+    std::array<Coefficients, 4> q;
+    for (int i = 0; i < 4; ++i) q[i] = series_of(x, i, p);
+    const Coefficients u1 = series_of(x, System::kU1, p), u2 = series_of(x, System::kU2, p);
+    g.g1[p] = 2.0 * (cauchy(q[1], q[3], p) - cauchy(q[0], q[2], p));
+    g.g2[p] = 2.0 * (cauchy(q[2], q[3], p) + cauchy(q[0], q[1], p));
     for (int n = 0; n <= p; ++n) {
       rate[n] = cauchy(g.g1, u2, n) - cauchy(g.g2, u1, n);
-      kz[n] = cauchy(x[0], x[0], n) - cauchy(x[1], x[1], n) - cauchy(x[2], x[2], n) + cauchy(x[3], x[3], n);
+      kz[n] = cauchy(q[0], q[0], n) - cauchy(q[1], q[1], n) - cauchy(q[2], q[2], n) + cauchy(q[3], q[3], n);
     }
     kz[0] -= cos_stop;  // k_zeta - cos(stop): negative once the tilt passes stop_above
 

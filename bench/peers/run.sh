@@ -1,0 +1,23 @@
+#!/bin/bash
+# heavytop against other libraries on issue 14's two problems, at equal error (by hand, not CI).
+#   bench/peers/run.sh [BUILD_DIR] [REPS]      e.g. bench/peers/run.sh build 15
+# BUILD_DIR is a configured Release build of heavytop (its libheavytop_core.a is built here).
+# Needs libgsl-dev, Boost (odeint) and, for the SciPy rows, Debian's python3-scipy.
+# Prints one Markdown table; the rows also go to BUILD_DIR/peers/peers.csv.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+build=$(cd "${1:-$root/build}" && pwd)
+reps=${2:-15}
+cmake --build "$build" --target heavytop_core -j2 >/dev/null
+mkdir -p "$build/peers"
+g++ -std=c++20 -O3 -DNDEBUG -I"$root/include" -I"$build/include" -I/usr/include/eigen3 "$here/peers.cpp" \
+    "$build/libheavytop_core.a" -lgsl -lgslcblas -lfmt -lpthread -o "$build/peers/peers"
+echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+"$build/peers/peers" --reps "$reps" --csv "$build/peers/peers.csv" --reference "$build/peers/reference.txt"
+if /usr/bin/python3 -c 'import scipy' 2>/dev/null; then
+  /usr/bin/python3 "$here/scipy_peers.py" --reference "$build/peers/reference.txt" --heavytop "$build/peers/peers.csv" \
+      --reps "$(( reps < 7 ? reps : 7 ))"
+else
+  echo "SciPy rows: python3-scipy is not installed"
+fi
