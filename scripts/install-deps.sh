@@ -16,6 +16,9 @@ packages=(
   clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
 )
 
+# bench/peers/ (run by hand, not in CI): `install-deps.sh --peers` adds the other libraries.
+[ "${1:-}" = "--peers" ] && packages+=(libgsl-dev python3-scipy libmujoco-dev)
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

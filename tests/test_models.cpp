@@ -1,6 +1,6 @@
 // Physics over every model and integrator (MuJoCo style): one table of solvers (every Model,
-// each linear model by both methods, the nonlinear model by the adaptive integrator and by the
-// splitting of order 2 and 4) run on one table of bodies (the symmetric toy top, an asymmetric
+// each linear model by both methods, the nonlinear model by the adaptive integrator (dopri5),
+// the Taylor integrator, DOP853 and the splitting of order 2 and 4) run on one table of bodies (the symmetric toy top, an asymmetric
 // superfast body, a hanging gyroscope). Each test asserts a law, a closed form or an
 // independent route; every tolerance says what it was measured at (Release, GCC 12, x86-64).
 //
@@ -322,8 +322,9 @@ class Conservative : public ::testing::TestWithParam<Combination> {};
 //   splitting: L_zeta (and C w3 for A = B) is kept by every sub-flow, so only rounding moves
 //     it: < 1e-13 (measured <= 2.5e-15, asymmetric order 4, 315 Strang steps; were it not kept
 //     it would move like the energy does here, 5e-12..7e-8);
-//   adaptive at rtol = atol = 1e-12 (the default): E and L_zeta to the tolerance, < 1e-12
-//     (measured <= 1.6e-14 over these few periods; test_nonlinear follows 1000 periods);
+//   adaptive, taylor, dop853 at rtol = atol = 1e-12 (the default): E and L_zeta to the
+//     tolerance, < 1e-12 (measured <= 1.6e-14 over these few periods for dopri5;
+//     test_nonlinear follows 1000 periods, test_taylor 1e5);
 //   lagrange-exact: the closed form's full rigid-body state at each t carries the integrals
 //     it was built from: < 1e-14 (measured <= 9.5e-16; no accumulation, each t evaluated alone).
 // For A != B, C w3 is not an integral: its column must move (measured 1.9e-7..2.0e-7), which

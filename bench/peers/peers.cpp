@@ -15,6 +15,9 @@
 // Equal error: for each method the loosest tolerance on the grid 10^(-k/4) (k = 8..60) whose
 // error and that of the next 8 tighter ones (two decades) are at most the level is used; then every method is timed at its tolerance, the
 // methods interleaved, REPS rounds, and the median CPU time (of the thread) reported.
+// (*) marks a tolerance that reaches the level although some tighter one does not (a method
+// whose rounding floor is near the level): the loosest tolerance reaching it at all.
+// MuJoCo (built with -DHEAVYTOP_PEERS_MUJOCO): a fixed-step RK4; its column gives the step.
 // Output: one table (stdout, Markdown), and with --csv FILE the same rows as CSV.
 
 #include <algorithm>
@@ -33,6 +36,11 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "heavytop/heavytop.hpp"
+
+#ifdef HEAVYTOP_PEERS_MUJOCO
+#include <mujoco/mujoco.h>
+#include <unistd.h>
+#endif
 
 namespace {
 
@@ -105,6 +113,8 @@ std::vector<double> times_of(const Problem& p) { return heavytop::sample_times(p
 struct Method {
   std::string name;
   std::function<Axes(const Problem&, double)> run;
+  // For a fixed-step method: the step (s) the tolerance stands for; else null.
+  std::function<double(const Problem&, double)> step = nullptr;
 };
 
 Axes heavytop_run(const Problem& p, double tol, heavytop::Integrator integrator) {
@@ -173,6 +183,62 @@ Axes odeint_bulirsch_stoer(const Problem& p, double tol) {
   return odeint_run(p, odeint::bulirsch_stoer<std::array<double, 7>>(tol, tol));
 }
 
+#ifdef HEAVYTOP_PEERS_MUJOCO
+// MuJoCo 2.2.2 (Debian's libmujoco-dev): the body on a ball joint at the origin, its inertia
+// about the centre of mass (A - m R^2, B - m R^2, C) at R on body z, gravity -g zeta, no
+// contacts, the RK4 integrator at a fixed step. The "tolerance" t stands for the step
+// h = 0.1 s t^0.3 (2.5e-2 s at t = 1e-2, 3.2e-6 s at 1e-15), cut to divide the sample
+// interval T/100; a run of more than 4e6 steps is not made.
+double mujoco_step(const Problem& p, double tol) {
+  const double interval = p.horizon / 100.0;
+  const double n = std::ceil(interval / (0.1 * std::pow(tol, 0.3)));
+  return interval / n;
+}
+
+Axes mujoco_rk4(const Problem& p, double tol) {
+  const double h = mujoco_step(p, tol);
+  const double steps_per_sample = std::round(p.horizon / 100.0 / h);
+  if (100.0 * steps_per_sample > 4e6) return {};  // beyond the budget of a run
+  const heavytop::Body& b = p.body;
+  const double mr2 = b.mass * b.length * b.length;
+  // The toy top is a flat disc about its centre of mass (A + B = C exactly); MuJoCo refuses
+  // A + B < C, which rounding can give: C is lowered to A + B (a change of ~1e-16 relative).
+  const double a = b.A - mr2, bb = b.B - mr2, c = std::min(b.C, a + bb);
+  char xml[2048];
+  std::snprintf(xml, sizeof xml,
+                "<mujoco><option gravity=\"0 0 %.17g\" timestep=\"%.17g\" integrator=\"RK4\">"
+                "<flag contact=\"disable\"/></option><worldbody><body name=\"top\">"
+                "<joint type=\"ball\" damping=\"0\" armature=\"0\"/>"
+                "<inertial pos=\"0 0 %.17g\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>"
+                "</body></worldbody></mujoco>",
+                -b.gravity, h, b.length, b.mass, a, bb, c);
+  char path[] = "/tmp/heavytop-peers-XXXXXX.xml";
+  const int fd = mkstemps(path, 4);
+  if (fd < 0 || write(fd, xml, std::strlen(xml)) < 0) std::abort();
+  close(fd);
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(path, nullptr, error, sizeof error);
+  unlink(path);
+  if (!m) {
+    std::fprintf(stderr, "mujoco: %s\n", error);
+    std::abort();
+  }
+  mjData* d = mj_makeData(m);
+  const std::array<double, 7> x0 = initial<double>(p);
+  for (int i = 0; i < 4; ++i) d->qpos[i] = x0[i];      // body-to-world quaternion (w, x, y, z)
+  for (int i = 0; i < 3; ++i) d->qvel[i] = x0[4 + i];  // ball joint: angular velocity, body axes
+  Axes out;
+  for (int sample = 0; sample <= 100; ++sample) {
+    if (sample > 0)
+      for (int k = 0; k < steps_per_sample; ++k) mj_step(m, d);
+    out.push_back(axis_of_state(std::array<double, 7>{d->qpos[0], d->qpos[1], d->qpos[2], d->qpos[3], 0, 0, 0}));
+  }
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  return out;
+}
+#endif
+
 Axes reference(const Problem& p) {
   if (p.body.A == p.body.B) return axes_of(heavytop::simulate_lagrange_exact(p.body, p.start, times_of(p)));
   using LD = long double;
@@ -230,6 +296,9 @@ int main(int argc, char** argv) {
       {"GSL rk8pd", gsl_rk8pd},
       {"odeint rkf78", odeint_rkf78},
       {"odeint bulirsch_stoer", odeint_bulirsch_stoer},
+#ifdef HEAVYTOP_PEERS_MUJOCO
+      {"MuJoCo 2.2.2 RK4 (ball joint)", mujoco_rk4, mujoco_step},
+#endif
   };
   const std::vector<double> levels = {1e-6, 1e-9, 1e-12};
 
@@ -251,6 +320,7 @@ int main(int argc, char** argv) {
       // for the next two decades tighter (an error that dips below the level at one lucky
       // tolerance does not count).
       std::vector<double> tol(methods.size(), 0.0), err(methods.size(), 0.0);
+      std::vector<bool> lucky(methods.size(), false);
       for (std::size_t m = 0; m < methods.size(); ++m) {
         std::vector<double> errors;
         for (int k = 8; k <= 60; ++k) {
@@ -265,6 +335,14 @@ int main(int argc, char** argv) {
             break;
           }
         }
+        // A method whose rounding floor lies near the level: the loosest tolerance that
+        // reaches it at all (marked in the table).
+        if (tol[m] == 0.0)
+          for (std::size_t i = 0; i < errors.size(); ++i)
+            if (errors[i] <= level) {
+              tol[m] = std::pow(10.0, -static_cast<double>(i + 8) / 4.0), err[m] = errors[i], lucky[m] = true;
+              break;
+            }
       }
       // Time, interleaved.
       std::vector<std::vector<double>> times(methods.size());
@@ -286,12 +364,15 @@ int main(int argc, char** argv) {
       }
       for (std::size_t m = 0; m < methods.size(); ++m) {
         if (tol[m] == 0.0) {
-          std::printf("| %s | %.0e | %s | - | not reached at 1e-15 | - | - |\n", p.name.c_str(), level,
+          std::printf("| %s | %.0e | %s | - | not reached | - | - |\n", p.name.c_str(), level,
                       methods[m].name.c_str());
           continue;
         }
-        std::printf("| %s | %.0e | %s | %.2e | %.2e | %.1f us | %.2f |\n", p.name.c_str(), level,
-                    methods[m].name.c_str(), tol[m], err[m], med[m], med[m] / fastest_heavytop);
+        char setting[64];
+        if (methods[m].step) std::snprintf(setting, sizeof setting, "h = %.3g s", methods[m].step(p, tol[m]));
+        else std::snprintf(setting, sizeof setting, "%.2e%s", tol[m], lucky[m] ? " (*)" : "");
+        std::printf("| %s | %.0e | %s | %s | %.2e | %.1f us | %.2f |\n", p.name.c_str(), level,
+                    methods[m].name.c_str(), setting, err[m], med[m], med[m] / fastest_heavytop);
         if (csv)
           std::fprintf(csv, "%s,%g,%s,%g,%g,%g\n", p.name.c_str(), level, methods[m].name.c_str(), tol[m], err[m],
                        med[m]);
