@@ -204,16 +204,6 @@ struct SpinFactored {
   static constexpr int kU1 = 4, kU2 = 5;
 };
 
-// ---- Options ----------------------------------------------------------------------------------------
-
-// The options' first violation (the keys and rules of NonlinearOptions).
-void validate_options(const NonlinearOptions& o) {
-  if (std::string why; !o.IsValid(&why)) {
-    const auto colon = why.find(": ");
-    throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
-  }
-}
-
 // ---- The integrator -----------------------------------------------------------------------------------
 
 template <class System>
@@ -487,7 +477,7 @@ void detail::stream_taylor(const Body& body, const InitialState& initial, const 
                            const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
   validate(initial);
-  validate_options(options);
+  validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
   if (body.A == body.B) simulate<SpinFactored>(body, rb0, samples, options, summary);
   else simulate<Plain>(body, rb0, samples, options, summary);
@@ -505,7 +495,7 @@ TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial,
                                   double stop_above, const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
   validate(initial);
-  validate_options(options);
+  validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
