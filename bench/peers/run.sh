@@ -18,7 +18,8 @@ if [ -f /usr/include/mujoco/mujoco.h ]; then mujoco=(-DHEAVYTOP_PEERS_MUJOCO -lm
 g++ -std=c++20 -O3 -DNDEBUG -I"$root/include" -I"$build/include" -I/usr/include/eigen3 "$here/peers.cpp" \
     "$build/libheavytop_core.a" -lgsl -lgslcblas -lfmt -lpthread "${mujoco[@]}" -o "$build/peers/peers"
 echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
-"$build/peers/peers" --reps "$reps" --csv "$build/peers/peers.csv" --reference "$build/peers/reference.txt"
+# From the build folder: MuJoCo writes MUJOCO_LOG.TXT (its warnings) into the current one.
+(cd "$build/peers" && ./peers --reps "$reps" --csv "$build/peers/peers.csv" --reference "$build/peers/reference.txt")
 if /usr/bin/python3 -c 'import scipy' 2>/dev/null; then
   /usr/bin/python3 "$here/scipy_peers.py" --reference "$build/peers/reference.txt" --heavytop "$build/peers/peers.csv" \
       --reps "$(( reps < 7 ? reps : 7 ))"
