@@ -1,15 +1,15 @@
 #pragma once
 /// \file
-/// The `nonlinear` model integrated by a Taylor-series method (docs/integrators.md, "Taylor";
-/// Jorba & Zou 2005, Biscani & Izzo 2021 (heyoka), Barrio et al. 2005 (TIDES)).
+/// The `nonlinear` model integrated by a Taylor-series method (docs/integrators.md, "Taylor
+/// and DOP853"; Jorba & Zou 2005, Biscani & Izzo 2021 (heyoka), Barrio et al. 2005 (TIDES)).
 ///
 /// The equations of the rigid body are a quadratic polynomial in (quaternion, angular
 /// velocity), so the Taylor coefficients of the solution to any order follow from Cauchy
-/// products of the lower ones (automatic differentiation), at a cost per order close to
-/// one evaluation of the right-hand side. The order p and the step h come from the tolerance
-/// (Jorba-Zou: p = ceil(-ln(eps)/2 + 1), h = rho / e^2 exp(-0.7/(p - 1)), rho from the last
-/// two coefficients), the dense output is the series itself, and events are roots of the
-/// series of the event function on [0, h].
+/// products of the lower ones (automatic differentiation); order n costs n + 1 multiply-adds
+/// per product term. The order comes from the tolerance (Jorba-Zou: p = ceil(-ln(eps)/2 + 1),
+/// eps = min(rtol, atol)), the step from the last two coefficients (the h at which
+/// |x_i[n]| h^n = atol + rtol |x_i| for n = p - 1, p), the dense output is the series itself,
+/// and events are roots of the series of the event function on [0, h].
 ///
 /// Variables, chosen by the body (reported in TaylorSummary::variables):
 ///  - A == B: the spin-factored state of nonlinear.hpp (quaternion p of the non-spinning
@@ -42,8 +42,7 @@ enum class TaylorVariables {
 };
 
 /// What one run of the Taylor integrator did (NonlinearSummary's fields, with
-/// rhs_evaluations = steps x order: one pass of the recurrence per order costs about one
-/// right-hand side).
+/// rhs_evaluations = steps x order: one pass of the recurrence per order, heyoka's count).
 struct TaylorSummary {
   NonlinearSummary work;       ///< steps (no rejections: the step is chosen, not tried), drifts
   int order = 0;               ///< the series' order
