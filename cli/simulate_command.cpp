@@ -19,7 +19,7 @@ struct SimulateFlags {
   double t_end = 10.0;
   long long samples = 1001;
   std::string method = "analytic";
-  std::string integrator = "adaptive";
+  std::string integrator = "auto";
   SimulateOptions options;
   CLI::Option* model_option = nullptr;
   CLI::Option* t_end_option = nullptr;
@@ -64,10 +64,11 @@ Action add_simulate_command(CLI::App& app) {
                        ->default_str(fmt::format("{}", adaptive.atol));
   o->integrator_option =
       cmd->add_option("--integrator", o->integrator,
-                      "nonlinear: adaptive (Dormand-Prince, error control) | splitting (fixed step, "
+                      "nonlinear: auto (the fastest for the body and tolerance) | taylor (Taylor series) | dop853 "
+                      "(Dormand-Prince 8) | dopri5 (Dormand-Prince 5; old name adaptive) | splitting (fixed step, "
                       "structure-preserving: bounded energy error over long runs)")
-          ->check(CLI::IsMember({"adaptive", "splitting"}))
-          ->default_str("adaptive");
+          ->check(CLI::IsMember({"auto", "taylor", "dop853", "dopri5", "adaptive", "splitting"}))
+          ->default_str("auto");
   SplittingOptions& splitting = o->options.splitting;
   o->step_option = cmd->add_option("--step", splitting.step, "s, splitting: the fixed step")
                        ->default_str(fmt::format("{}", splitting.step));
@@ -104,7 +105,7 @@ Action add_simulate_command(CLI::App& app) {
     if (!linear && o->method_option->count())
       throw InvalidInput("--method", "applies to the linear models only");
     const auto integrator = integrator_from_name(o->integrator);
-    if (!integrator) throw InvalidInput("--integrator", "must be adaptive or splitting");
+    if (!integrator) throw InvalidInput("--integrator", "must be auto, taylor, dop853, dopri5 (adaptive) or splitting");
     for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option, o->max_steps_option})
       if (given->count() && !nonlinear)
         throw InvalidInput(given->get_name(), "applies to --model nonlinear only");

@@ -20,6 +20,9 @@ packages=(
 # npm: Debian's package, unless a node install (e.g. NodeSource's nodejs) already brings its own.
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 
+# bench/peers/ (run by hand, not in CI): `install-deps.sh --peers` adds the other libraries.
+[ "${1:-}" = "--peers" ] && packages+=(libgsl-dev python3-scipy libmujoco-dev)
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -336,6 +336,13 @@ TEST(DampedNonlinear, TheIntegratorsThatCannotIncludeDampingRefuseIt) {
   SimulateOptions splitting;
   splitting.integrator = Integrator::Splitting;
   EXPECT_EQ(key_of(Model::Nonlinear, splitting), "integrator");
+  for (Integrator i : {Integrator::Taylor, Integrator::Dop853}) {  // their equations hold no torques
+    SimulateOptions o;
+    o.integrator = i;
+    EXPECT_EQ(key_of(Model::Nonlinear, o), "integrator");
+  }
+  EXPECT_EQ(choose_integrator(b, {}), Integrator::Adaptive);  // auto takes the one that does
+  EXPECT_EQ(key_of(Model::Nonlinear, {}), "accepted");
   EXPECT_EQ(key_of(Model::LagrangeExact, {}), "model");
   b.damping = {.transverse = 0.1};
   EXPECT_EQ(key_of(Model::Linearized, {}), "method");  // the closed form is undamped

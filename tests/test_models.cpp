@@ -1,6 +1,6 @@
 // Physics over every model and integrator (MuJoCo style): one table of solvers (every Model,
-// each linear model by both methods, the nonlinear model by the adaptive integrator and by the
-// splitting of order 2 and 4) run on one table of bodies (the symmetric toy top, an asymmetric
+// each linear model by both methods, the nonlinear model by the adaptive integrator (dopri5),
+// the Taylor integrator, DOP853 and the splitting of order 2 and 4) run on one table of bodies (the symmetric toy top, an asymmetric
 // superfast body, a hanging gyroscope). Each test asserts a law, a closed form or an
 // independent route; every tolerance says what it was measured at (Release, GCC 12, x86-64).
 //
@@ -105,6 +105,8 @@ const std::vector<Solver>& solvers() {
       {"linearized_analytic", Model::Linearized, LinearMethod::Analytic},
       {"linearized_numeric", Model::Linearized, LinearMethod::Numeric},
       {"nonlinear_adaptive", Model::Nonlinear, {}, Integrator::Adaptive},
+      {"nonlinear_taylor", Model::Nonlinear, {}, Integrator::Taylor},
+      {"nonlinear_dop853", Model::Nonlinear, {}, Integrator::Dop853},
       {"nonlinear_splitting2", Model::Nonlinear, {}, Integrator::Splitting, 2},
       {"nonlinear_splitting4", Model::Nonlinear, {}, Integrator::Splitting, 4},
       {"lagrange_exact", Model::LagrangeExact},
@@ -180,8 +182,8 @@ TEST(EveryModel, EachModelHasItsSolversInTheTable) {
   for (Model m : kModels) {
     int n = 0;
     for (const Solver& s : solvers()) n += s.model == m;
-    // Two methods per linear model; adaptive + splitting 2 and 4 for the nonlinear one.
-    EXPECT_EQ(n, linear_kind(m) ? 2 : m == Model::Nonlinear ? 3 : 1) << name(m);
+    // Two methods per linear model; dopri5, taylor, dop853 + splitting 2 and 4 for the nonlinear one.
+    EXPECT_EQ(n, linear_kind(m) ? 2 : m == Model::Nonlinear ? 5 : 1) << name(m);
     EXPECT_EQ(model_from_name(name(m)), m);
   }
 }
@@ -298,7 +300,7 @@ TEST_P(EveryModelOnEveryBody, HasTheSpecColumnsAndEverySample) {
   EXPECT_EQ(summary.max_relative_energy_drift.has_value(), nonlinear);
   EXPECT_EQ(summary.max_relative_vertical_momentum_drift.has_value(), nonlinear);
   EXPECT_EQ(summary.max_relative_axial_momentum_drift.has_value(), nonlinear);
-  EXPECT_EQ(sim.adaptive.has_value(), nonlinear && s.integrator == Integrator::Adaptive);
+  EXPECT_EQ(sim.adaptive.has_value(), nonlinear && s.integrator != Integrator::Splitting);
   if (nonlinear) {
     EXPECT_GT(summary.steps, 0u);
     EXPECT_GT(summary.rhs_evaluations, 0u);
@@ -320,8 +322,9 @@ class Conservative : public ::testing::TestWithParam<Combination> {};
 //   splitting: L_zeta (and C w3 for A = B) is kept by every sub-flow, so only rounding moves
 //     it: < 1e-13 (measured <= 2.5e-15, asymmetric order 4, 315 Strang steps; were it not kept
 //     it would move like the energy does here, 5e-12..7e-8);
-//   adaptive at rtol = atol = 1e-12 (the default): E and L_zeta to the tolerance, < 1e-12
-//     (measured <= 1.6e-14 over these few periods; test_nonlinear follows 1000 periods);
+//   adaptive, taylor, dop853 at rtol = atol = 1e-12 (the default): E and L_zeta to the
+//     tolerance, < 1e-12 (measured <= 1.6e-14 over these few periods for dopri5;
+//     test_nonlinear follows 1000 periods, test_taylor 1e5);
 //   lagrange-exact: the closed form's full rigid-body state at each t carries the integrals
 //     it was built from: < 1e-14 (measured <= 9.5e-16; no accumulation, each t evaluated alone).
 // For A != B, C w3 is not an integral: its column must move (measured 1.9e-7..2.0e-7), which
@@ -499,6 +502,7 @@ TEST_P(AdaptiveConvergence, ErrorFollowsTheTolerance) {
   std::string record;
   for (double tol : {1e-6, 1e-8, 1e-10}) {
     SimulateOptions o;
+    o.integrator = Integrator::Adaptive;
     o.adaptive.rtol = o.adaptive.atol = tol;
     const double error =
         max_angle_error(simulate(Model::Nonlinear, b.body, b.start, times, o).trajectory, exact);
@@ -558,7 +562,8 @@ TEST(IndependentRoute, OdeintOnRigidBodySystemMatchesBothNonlinearIntegrators) {
   EXPECT_GT(axial, 1e-6);
   RecordProperty("odeint_drifts_E_Lzeta_Cw3", sci(energy) + " " + sci(vertical) + " " + sci(axial));
 
-  for (const Solver& solver_case : {solver("nonlinear_adaptive"), solver("nonlinear_splitting4")}) {
+  for (const Solver& solver_case : {solver("nonlinear_adaptive"), solver("nonlinear_taylor"),
+                                    solver("nonlinear_dop853"), solver("nonlinear_splitting4")}) {
     BodyCase b{"asymmetric", body, s, 3.0, 1e-3};
     const Simulation sim = simulate(Model::Nonlinear, body, s, times, options_for(solver_case, b));
     ASSERT_TRUE(sim.summary.ok()) << sim.summary.message;

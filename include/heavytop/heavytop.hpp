@@ -19,6 +19,8 @@
 #include "heavytop/linear_motion.hpp"   // motion of the linear models
 #include "heavytop/nonlinear.hpp"       // the full rigid body, integrated adaptively
 #include "heavytop/splitting.hpp"       // the structure-preserving splitting integrator
+#include "heavytop/taylor.hpp"          // the Taylor-series integrator of the full body
+#include "heavytop/dop853.hpp"          // the 8th-order Runge-Kutta of the full body
 #include "heavytop/lagrange_exact.hpp"  // the symmetric top's motion in closed form
 #include "heavytop/compare.hpp"         // the models against each other
 #include "heavytop/lifetime.hpp"        // how long a damped top stays up (SPEC section 8)

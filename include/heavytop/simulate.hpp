@@ -45,19 +45,32 @@ std::optional<LinearModelKind> linear_kind(Model model);
 /// The Model of a linear model.
 Model model_of(LinearModelKind kind);
 
-/// How the `nonlinear` model is integrated.
+/// How the `nonlinear` model is integrated. Adaptive, Taylor and Dop853 take their
+/// tolerances from SimulateOptions::adaptive; docs/integrators.md compares them.
 enum class Integrator {
-  Adaptive,   ///< Dormand-Prince 5(4) with error control and dense output (nonlinear.hpp)
-  Splitting,  ///< fixed-step structure-preserving splitting (splitting.hpp)
+  Adaptive,   ///< "dopri5": Dormand-Prince 5(4) with error control and dense output (nonlinear.hpp)
+  Splitting,  ///< "splitting": fixed-step structure-preserving splitting (splitting.hpp)
+  Taylor,     ///< "taylor": Taylor series, order and step from the tolerance (taylor.hpp)
+  Dop853,     ///< "dop853": Dormand-Prince 8(5,3) with its 7th-order dense output (dop853.hpp)
+  Auto,       ///< "auto": the fastest of the three above for the body and tolerance (choose_integrator)
 };
-std::string_view name(Integrator integrator);  ///< "adaptive" | "splitting"
+/// "dopri5" | "splitting" | "taylor" | "dop853" | "auto".
+std::string_view name(Integrator integrator);
+/// The integrator called `name` ("adaptive" is dopri5's old name), or nullopt.
 std::optional<Integrator> integrator_from_name(std::string_view name);
+/// Auto picks the Taylor integrator when min(rtol, atol) is at most this (dimensionless), or
+/// when A != B; dopri5 (Adaptive) for a symmetric body above it (docs/integrators.md, "Choosing").
+inline constexpr double kAutoTaylorBelow = 1e-4;
+/// The integrator Auto stands for with these tolerances and this body (Taylor or Adaptive,
+/// never Auto or Splitting); the rule and its measurements are in docs/integrators.md. A
+/// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques.
+Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances);
 
 /// Settings of simulate(); each applies to the models named.
 struct SimulateOptions {
   LinearMethod method = LinearMethod::Analytic;  ///< first-order, body-fixed, linearized
-  Integrator integrator = Integrator::Adaptive;  ///< nonlinear
-  NonlinearOptions adaptive;                     ///< nonlinear with Integrator::Adaptive
+  Integrator integrator = Integrator::Auto;      ///< nonlinear
+  NonlinearOptions adaptive;                     ///< nonlinear with Adaptive, Taylor, Dop853, Auto
   SplittingOptions splitting;                    ///< nonlinear with Integrator::Splitting
   /// Called with the simulated time (s) as the work proceeds, if set; may throw to stop it.
   std::function<void(double)> progress;
@@ -74,8 +87,9 @@ enum class Termination {
 };
 
 /// Throws InvalidInput unless `model` with `options` can integrate `body`'s damping (SPEC
-/// section 6): lagrange-exact (key "model") and the splitting integrator ("integrator") are
-/// for the conservative body, and the linear models' closed form ("method") for the undamped.
+/// section 6): lagrange-exact (key "model") and the splitting, Taylor and DOP853 integrators
+/// ("integrator") are for the conservative body, and the linear models' closed form
+/// ("method") for the undamped.
 void validate_damping(Model model, const Body& body, const SimulateOptions& options);
 
 /// The relative energy error of the splitting integrator above which simulate() warns that the
@@ -111,8 +125,8 @@ struct SimulationSummary {
 struct Simulation {
   Trajectory trajectory;      ///< every sample on Success; those computed before a Failure
   SimulationSummary summary;
-  /// The adaptive integrator's own summary (nonlinear with Integrator::Adaptive), for the
-  /// JSON `summary` object.
+  /// The error-controlled integrator's own summary (nonlinear with Adaptive, Taylor, Dop853
+  /// or Auto), for the JSON `summary` object.
   std::optional<NonlinearSummary> adaptive;
 };
 

@@ -40,6 +40,14 @@ inline void throw_if_invalid(const Violation& violation) {
   if (violation) throw InvalidInput(violation->first, violation->second);
 }
 
+// The integrators whose equations hold no torques of SPEC section 6 (taylor, dop853) refuse a
+// damped body rather than integrate it as if it were conservative (key "integrator").
+inline void refuse_damping(const Body& body, const char* integrator) {
+  if (!body.damping.conservative())
+    throw InvalidInput("integrator", fmt::format("{} integrates the conservative body only: with damping, friction or "
+                                                 "a motor use dopri5 (or auto)", integrator));
+}
+
 inline void validate_times(const std::vector<double>& times) {
   double previous = 0.0;
   for (double t : times) {

@@ -5,6 +5,7 @@
 #include "integration.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/splitting.hpp"
+#include "heavytop/taylor.hpp"
 
 namespace heavytop::detail {
 
@@ -13,5 +14,11 @@ void stream_nonlinear(const Body& body, const InitialState& initial, const Sampl
 
 void stream_splitting(const Body& body, const InitialState& initial, const SampleStream& samples,
                       const SplittingOptions& options, SplittingSummary* summary);
+
+void stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
+                   const NonlinearOptions& options, TaylorSummary* summary);
+
+void stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
+                   const NonlinearOptions& options, NonlinearSummary* summary);
 
 }  // namespace heavytop::detail

@@ -1,0 +1,70 @@
+#pragma once
+/// \file
+/// The `nonlinear` model integrated by a Taylor-series method (docs/integrators.md, "Taylor
+/// and DOP853"; Jorba & Zou 2005, Biscani & Izzo 2021 (heyoka), Barrio et al. 2005 (TIDES)).
+///
+/// The equations of the rigid body are a quadratic polynomial in (quaternion, angular
+/// velocity), so the Taylor coefficients of the solution to any order follow from Cauchy
+/// products of the lower ones (automatic differentiation); order n costs n + 1 multiply-adds
+/// per product term. The order comes from the tolerance (Jorba-Zou: p = ceil(-ln(eps)/2 + 1),
+/// eps = min(rtol, atol)), the step from the last two coefficients (the h at which
+/// |x_i[n]| h^n = atol + rtol |x_i| for n = p - 1, p), the dense output is the series itself,
+/// and events are roots of the series of the event function on [0, h].
+///
+/// Variables, chosen by the body (reported in TaylorSummary::variables):
+///  - A == B: the spin-factored state of nonlinear.hpp (quaternion p of the non-spinning
+///    frame, transverse angular velocity v in it; w3 constant). Nothing turns at the spin.
+///  - A != B: the plain state of rigid_body.hpp (quaternion q, body-axes w).
+/// Body frame, units and the output columns are simulate_nonlinear()'s.
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// The highest order the Taylor integrator uses (dimensionless); rtol = 1e-15 needs 19.
+inline constexpr int kTaylorMaxOrder = 24;
+
+/// The Taylor order for the tolerances (Jorba-Zou): ceil(-ln(eps)/2 + 1), eps = min(rtol, atol),
+/// clamped to [2, kTaylorMaxOrder].
+int taylor_order(const NonlinearOptions& options);
+
+/// Which variables the Taylor integrator used.
+enum class TaylorVariables {
+  SpinFactored,  ///< A == B: (p, v1, v2), w3 constant
+  Plain,         ///< A != B: (q, w1, w2, w3)
+};
+
+/// What one run of the Taylor integrator did (NonlinearSummary's fields, with
+/// rhs_evaluations = steps x order: one pass of the recurrence per order, heyoka's count).
+struct TaylorSummary {
+  NonlinearSummary work;       ///< steps (no rejections: the step is chosen, not tried), drifts
+  int order = 0;               ///< the series' order
+  TaylorVariables variables = TaylorVariables::Plain;
+};
+
+/// simulate_nonlinear() by the Taylor method: same columns, same InvalidInput keys ("rtol",
+/// "atol", "max_steps", "times"), std::runtime_error (one line, "taylor: ...") on max_steps,
+/// a step lost in the rounding of t, or a state that stops being finite.
+/// The tolerance is met per step componentwise: |error_i| <~ atol + rtol |x_i|.
+Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
+                           const NonlinearOptions& options = {}, TaylorSummary* summary = nullptr);
+
+/// tilt_extremes() by the Taylor method: the tilt extrema are the roots of the series of
+/// d(k_zeta)/dt on each step, the threshold crossing (tilt = stop_above, rad) the root of the
+/// series of k_zeta - cos(stop_above); both found by TOMS 748 on the polynomial, in a step
+/// split into 8 pieces to isolate them (two roots in one piece of 1/8 step would be missed).
+/// Unlike tilt_extremes(), when the scan stops early t_end and max_tilt are the crossing
+/// itself (max_tilt == stop_above to rounding). Same keys ("horizon", "max_tilt") and
+/// failures as simulate_taylor().
+TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
+                                  double stop_above = std::numeric_limits<double>::infinity(),
+                                  const NonlinearOptions& options = {}, TaylorSummary* summary = nullptr);
+
+}  // namespace heavytop

@@ -1,0 +1,508 @@
+#include "heavytop/taylor.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <fmt/format.h>
+
+#include "heavytop/rigid_body.hpp"
+
+#include "detail/integration.hpp"
+#include "detail/streams.hpp"
+
+namespace heavytop {
+
+using namespace detail;
+
+namespace {
+
+// ---- Series ---------------------------------------------------------------------------------------
+//
+// A truncated power series in tau = t - t0: s(tau) = sum_n s[n] tau^n (normalised Taylor
+// coefficients, s[n] = s^(n)(t0) / n!). The solution's coefficients follow from x' = f(x):
+// x[n+1] = f[n] / (n + 1), f[n] the n-th coefficient of f(x(tau)), which for a polynomial f
+// is a sum of Cauchy products sum_{j=0..n} a[j] b[n-j] of the coefficients up to order n.
+constexpr int kM = kTaylorMaxOrder;
+using Coefficients = std::array<double, kM + 1>;  // one series
+
+// The state's series, order by order: c[n][i] is coefficient n of variable i (7 used, the
+// 8th pads a row to two cache-line halves). A row per order lets one loop over j form every
+// Cauchy product of order n in SIMD pairs (SSE2, the x86-64 baseline) and Horner's rule run
+// on all variables at once.
+struct alignas(64) Jet {
+  double c[kM + 1][8];
+};
+
+using v2d = double __attribute__((vector_size(16)));
+inline v2d load2(const double* p) {
+  v2d v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline v2d splat(double a) { return v2d{a, a}; }
+
+// The n-th coefficient of the product of two series.
+inline double cauchy(const Coefficients& a, const Coefficients& b, int n) {
+  double s = 0.0;
+  for (int j = 0; j <= n; ++j) s += a[j] * b[n - j];
+  return s;
+}
+
+// s(tau) by Horner's rule.
+inline double horner(const Coefficients& s, int p, double tau) {
+  double v = s[p];
+  for (int n = p - 1; n >= 0; --n) v = v * tau + s[n];
+  return v;
+}
+
+// Every variable of the jet at tau (Horner, four pairs at a time).
+inline void horner(const Jet& x, int p, double tau, double* out) {
+  v2d v[4];
+  for (int i = 0; i < 4; ++i) v[i] = load2(&x.c[p][2 * i]);
+  const v2d t = splat(tau);
+  for (int n = p - 1; n >= 0; --n)
+    for (int i = 0; i < 4; ++i) v[i] = v[i] * t + load2(&x.c[n][2 * i]);
+  for (int i = 0; i < 4; ++i) std::memcpy(out + 2 * i, &v[i], sizeof v[i]);
+}
+
+// One variable's series out of the jet.
+inline Coefficients series_of(const Jet& x, int i, int p) {
+  Coefficients s{};
+  for (int n = 0; n <= p; ++n) s[n] = x.c[n][i];
+  return s;
+}
+
+// ---- The two sets of variables --------------------------------------------------------------------
+//
+// Both keep the attitude quaternion in slots 0..3 (w, x, y, z) and compute the series of the
+// upward vertical's first two components gamma_1, gamma_2 along the way: the torque
+// m g R (gamma x e3) = m g R (gamma_2, -gamma_1, 0) needs them, and so does the tilt's rate
+// d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 (u = w, or v in the non-spinning frame).
+// gamma = R(q)^T e_zeta is quadratic in q for |q| = 1, which the exact flow keeps and every
+// step restores (normalise()), so the right-hand side is a quadratic polynomial.
+//   gamma_1 = 2 (qx qz - qw qy),  gamma_2 = 2 (qy qz + qw qx).
+//
+// Damping torques linear in w (-d_t w_perp, -d_a (w.k) k, the friction issue) are linear
+// terms in the w (or v, w3) rows below: - d_t/A w1[n] etc., at no extra Cauchy product.
+struct Gamma {
+  Coefficients g1{}, g2{};
+};
+
+// The gamma products of order n accumulated by the loops below, as pairs:
+// (qx qz, qy qz) and (qw qy, qw qx).
+inline void gamma_terms(const double* a, const double* b, v2d& xz_yz, v2d& wy_wx) {
+  xz_yz += load2(a + 1) * splat(b[3]);
+  wy_wx += splat(a[0]) * v2d{b[2], b[1]};
+}
+inline void store_gamma(Gamma& g, int n, v2d xz_yz, v2d wy_wx) {
+  g.g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
+  g.g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
+}
+
+// The plain state of rigid_body.hpp: q (body to fixed), w in body axes. 19 Cauchy products
+// per order: q (x) w (all 12 pairs q_i w_m), gamma (4), w x I w (3).
+struct Plain {
+  static constexpr int kSize = 7;
+  static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
+  double e1, e2, e3, ka, kb;  // (B - C)/A, (C - A)/B, (A - B)/C (1), m g R / A, m g R / B (1/s^2)
+
+  explicit Plain(const Body& b)
+      : e1((b.B - b.C) / b.A), e2((b.C - b.A) / b.B), e3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
+        kb(b.mgR() / b.B) {}
+
+  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
+
+  // Coefficients 1..p of every variable from row 0; gamma up to order p - 1.
+  void coefficients(Jet& x, Gamma& g, int p) const {
+    for (int n = 0; n < p; ++n) {
+      v2d qw_w = {}, qx_w = {}, qy_w = {}, qz_w = {};  // q_i (w1, w2)
+      v2d wx_w3 = {}, yz_w3 = {};                      // (qw, qx) w3, (qy, qz) w3
+      v2d xz_yz = {}, wy_wx = {};                      // gamma
+      v2d w23_w31 = {};                                // (w2 w3, w3 w1)
+      double w12 = 0.0;                                // w1 w2
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d w = load2(b + 4), w3 = splat(b[6]);
+        qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
+        wx_w3 += load2(a) * w3, yz_w3 += load2(a + 2) * w3;
+        gamma_terms(a, b, xz_yz, wy_wx);
+        w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
+        w12 += a[4] * b[5];
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
+      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      double* next = x.c[n + 1];
+      // q' = q (x) (0, w) / 2
+      next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
+      next[1] = half * (qw_w[0] + yz_w3[0] - qz_w[1]);
+      next[2] = half * (qw_w[1] + qz_w[0] - wx_w3[1]);
+      next[3] = half * (wx_w3[0] + qx_w[1] - qy_w[0]);
+      // Euler: I w' = (I w) x w + m g R (gamma x e3)
+      next[4] = inv * (e1 * w23_w31[0] + ka * g.g2[n]);
+      next[5] = inv * (e2 * w23_w31[1] - kb * g.g1[n]);
+      next[6] = inv * (e3 * w12);
+      next[7] = 0.0;
+    }
+  }
+
+  // Body-to-fixed attitude and body-axes w of a state (the quaternion normalised).
+  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
+  static constexpr int kU1 = 4, kU2 = 5;  // the velocity components in d(k_zeta)/dt
+};
+
+// The spin-factored state of nonlinear.hpp for A == B: q = p (x) exp(psi e3 / 2) with
+// psi' = w3, p's frame N turns with the transverse angular velocity v = Rz(psi)(w1, w2) only.
+// For A == B, w3 is constant and psi drops out: v' = (C w3 / A) J v + (m g R / A) J gamma.
+// Slot 6 holds w3 (its series is the constant). 12 Cauchy products per order:
+// p (x) v (the 8 pairs p_i v_m) and gamma (4).
+struct SpinFactored {
+  static constexpr int kSize = 7;
+  static constexpr TaylorVariables kVariables = TaylorVariables::SpinFactored;
+  double c_over_a, ka;  // C / A (1), m g R / A (1/s^2)
+
+  explicit SpinFactored(const Body& b) : c_over_a(b.C / b.A), ka(b.mgR() / b.A) {}
+
+  // psi = 0 at the start: p = q, v = (w1, w2).
+  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
+
+  void coefficients(Jet& x, Gamma& g, int p) const {
+    const double nutation = c_over_a * x.c[0][6];  // rad/s, C w3 / A
+    for (int n = 0; n < p; ++n) {
+      v2d pw_v = {}, px_v = {}, py_v = {}, pz_v = {};  // p_i (v1, v2)
+      v2d xz_yz = {}, wy_wx = {};                      // gamma
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d v = load2(b + 4);
+        pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
+        gamma_terms(a, b, xz_yz, wy_wx);
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
+      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double* row = x.c[n];
+      double* next = x.c[n + 1];
+      // p' = p (x) (0, v1, v2, 0) / 2
+      next[0] = -half * (px_v[0] + py_v[1]);
+      next[1] = half * (pw_v[0] - pz_v[1]);
+      next[2] = half * (pw_v[1] + pz_v[0]);
+      next[3] = half * (px_v[1] - py_v[0]);
+      next[4] = inv * (-nutation * row[5] + ka * g.g2[n]);
+      next[5] = inv * (nutation * row[4] - ka * g.g1[n]);
+      next[6] = 0.0;
+      next[7] = 0.0;
+    }
+  }
+
+  // The state in N: attitude R_p, "angular velocity" (v1, v2, w3). For A == B the axis, its
+  // rate (k' = v2 n1 - v1 n2) and E, L_zeta, C w3 of this state are the body's (Rz-invariant).
+  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
+  static constexpr int kU1 = 4, kU2 = 5;
+};
+
+// ---- The integrator -----------------------------------------------------------------------------------
+
+template <class System>
+class TaylorIntegrator {
+ public:
+  static constexpr int N = System::kSize;
+  using State = std::array<double, N>;
+
+  TaylorIntegrator(const Body& body, const System& system, const State& x0, double horizon,
+                   const NonlinearOptions& options, TaylorSummary* summary)
+      : body_(body),
+        system_(system),
+        order_(taylor_order(options)),
+        rtol_(options.rtol),
+        atol_(options.atol),
+        horizon_(horizon),
+        max_steps_(options.max_steps),
+        summary_(summary),
+        x_(x0) {
+    if (summary_) {
+      *summary_ = TaylorSummary{};
+      summary_->order = order_;
+      summary_->variables = System::kVariables;
+      summary_->work.symmetric = body.A == body.B;
+      scales_ = scales_of(body, System::rigid_body(x0));
+      initial_ = conserved(x0);
+    }
+  }
+
+  int order() const { return order_; }
+  double time() const { return t_; }
+  double previous_time() const { return t_old_; }
+  const Jet& series() const { return jet_; }
+  const Gamma& gamma() const { return gamma_; }
+
+  // One step from time(): the series at time(), its step, the state at its end. Afterwards
+  // interpolate() covers [previous_time(), time()] from the same series.
+  void step() {
+    if (steps_ >= max_steps_)
+      throw std::runtime_error(fmt::format(
+          "taylor: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
+          "loosen rtol/atol)", max_steps_, t_));
+    normalise();
+    for (int i = 0; i < N; ++i) jet_.c[0][i] = x_[i];
+    jet_.c[0][7] = 0.0;
+    system_.coefficients(jet_, gamma_, order_);
+
+    // The step at which the last two terms reach the tolerance, componentwise:
+    // |x_i[n]| h^n = eps_i = atol + rtol |x_i| for n = p - 1 and p (the estimate Jorba & Zou
+    // start from; their rho / e^2 exp(-0.7/(p-1)) is its asymptotic simplification, and
+    // measured at equal error it costs 10-30% more steps here: docs/integrators.md).
+    double norm_pm1 = 0.0, norm_p = 0.0;
+    for (int i = 0; i < N; ++i) {
+      const double weight = 1.0 / (atol_ + rtol_ * std::abs(x_[i]));
+      norm_pm1 = std::max(norm_pm1, std::abs(jet_.c[order_ - 1][i]) * weight);
+      norm_p = std::max(norm_p, std::abs(jet_.c[order_][i]) * weight);
+    }
+    // +inf when the series ends below order p - 1 (a polynomial motion: the step is exact).
+    double h = std::min(std::pow(norm_pm1, -1.0 / (order_ - 1)), std::pow(norm_p, -1.0 / order_));
+    const double left = horizon_ - t_;
+    if (left > 0.0 && !(h < left)) h = left;  // never beyond the horizon (dense output inside)
+    if (!(t_ + h > t_) || !std::isfinite(h))
+      throw std::runtime_error(fmt::format(
+          "taylor: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_));
+
+    t_old_ = t_;
+    h_ = h;
+    double end[8];
+    horner(jet_, order_, h, end);
+    std::copy(end, end + N, x_.begin());
+    t_ = (h == left) ? horizon_ : t_old_ + h;
+    ++steps_;
+    if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
+      throw std::runtime_error(
+          fmt::format("taylor: the state stopped being finite at t = {:.6g} s", t_old_));
+    if (summary_) monitor();
+  }
+
+  // The state at t in [previous_time(), time()], from the series.
+  void interpolate(double t, State& out) const {
+    if (t == t_) {
+      out = x_;
+      return;
+    }
+    double at[8];
+    horner(jet_, order_, t - t_old_, at);
+    std::copy(at, at + N, out.begin());
+  }
+
+  double step_size() const { return h_; }
+
+ private:
+  // |q| = 1 before each step: the vertical's formula is quadratic only on the unit sphere.
+  void normalise() {
+    const double norm = std::sqrt(x_[0] * x_[0] + x_[1] * x_[1] + x_[2] * x_[2] + x_[3] * x_[3]);
+    if (summary_)
+      summary_->work.max_quaternion_norm_error =
+          std::max(summary_->work.max_quaternion_norm_error, std::abs(norm - 1.0));
+    for (int i = 0; i < 4; ++i) x_[i] /= norm;
+  }
+
+  ConservedQuantities conserved(const State& x) const {
+    const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
+    const double inv = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+    return conserved_from(body_, x[4], x[5], x[6], 2.0 * (qx * qz - qw * qy) * inv,
+                          2.0 * (qy * qz + qw * qx) * inv, (qw * qw - qx * qx - qy * qy + qz * qz) * inv);
+  }
+
+  void monitor() {
+    NonlinearSummary& w = summary_->work;
+    ++w.steps;
+    w.rhs_evaluations += static_cast<std::size_t>(order_);
+    w.final_time = t_;
+    note_drift(w, conserved(x_), initial_, scales_);
+  }
+
+  const Body& body_;
+  System system_;
+  int order_;
+  double rtol_, atol_, horizon_;
+  std::size_t max_steps_;
+  TaylorSummary* summary_;
+  std::size_t steps_ = 0;
+  Scales scales_;
+  ConservedQuantities initial_;
+  Jet jet_{};
+  Gamma gamma_;
+  State x_;
+  double t_ = 0.0, t_old_ = 0.0, h_ = 0.0;
+};
+
+// Steps between two progress calls inside a sample interval.
+constexpr std::size_t kStepsPerProgress = 64;
+
+template <class System>
+void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
+              const NonlinearOptions& options, TaylorSummary* summary) {
+  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
+  TaylorIntegrator<System> integrator(body, System(body), System::state_of(rb0), horizon, options, summary);
+  const ConservedQuantities initial = conserved_quantities(body, rb0);
+
+  const std::size_t room = std::min(samples.count, samples.chunk);
+  Trajectory out;
+  out.reserve(room);
+  add_conserved_columns(out, room);
+  const AxisAngles a0 = axis_angles_of(rb0);  // t = 0 from the input itself (SPEC section 2)
+  typename TaylorIntegrator<System>::State x;
+  for (std::size_t i = 0; i < samples.count; ++i) {
+    const double t = samples.time(i);
+    ConservedQuantities q = initial;
+    AxisAngles a = a0;
+    if (t > 0.0) {
+      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
+        integrator.step();
+        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
+      }
+      integrator.interpolate(t, x);
+      const RigidBodyState rb = System::rigid_body(x);
+      q = conserved_quantities(body, rb);
+      a = axis_angles_of(rb);
+    }
+    push_angles(out, t, a);
+    push_conserved(out, q, initial);
+    maybe_flush(samples, out, i + 1 == samples.count);
+    if (options.progress) options.progress(t);
+  }
+}
+
+// ---- Events on the series ---------------------------------------------------------------------------
+
+// Tilt acos(k_zeta) of a state, as atan2(|k_horizontal|, k_zeta) (accurate near 0).
+template <class State>
+double tilt_of(const State& x) {
+  const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
+  const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
+  return std::atan2(std::hypot(g1, g2), qw * qw - qx * qx - qy * qy + qz * qz);
+}
+
+// A root of the polynomial s on [a, b] where s(a), s(b) have opposite signs, to ~1e-15 of
+// the step (TOMS 748; the polynomial is cheap, so it is solved to rounding).
+double polynomial_root(const Coefficients& s, int p, double a, double b, double fa, double fb, double h) {
+  std::uintmax_t iterations = 100;
+  const auto bracket = boost::math::tools::toms748_solve(
+      [&](double tau) { return horner(s, p, tau); }, a, b, fa, fb,
+      [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+template <class System>
+TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
+                       const NonlinearOptions& options, TaylorSummary* summary) {
+  using Integrator = TaylorIntegrator<System>;
+  TiltExtremes e;
+  if (summary) *summary = TaylorSummary{};
+  const auto x0 = System::state_of(rb0);
+  const double tilt0 = tilt_of(x0);
+  e.min_tilt = e.max_tilt = tilt0;
+  e.exceeded = tilt0 > stop_above;
+  if (e.exceeded || horizon == 0.0) return e;
+
+  Integrator integrator(body, System(body), x0, horizon, options, summary);
+  const int p = integrator.order();
+  const bool threshold = stop_above < 3.141592653589793;  // a tilt above pi cannot be reached
+  const double cos_stop = std::cos(stop_above);
+  auto note = [&](double t, double tilt) {
+    if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
+    if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
+  };
+
+  Coefficients rate{}, kz{};
+  Gamma g;
+  typename Integrator::State y;
+  constexpr int kPieces = 8;
+  while (integrator.time() < horizon) {
+    integrator.step();
+    const double t0 = integrator.previous_time(), h = integrator.time() - t0;
+    const auto& x = integrator.series();
+    // The series of d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 and of k_zeta = qw^2 - qx^2 - qy^2 + qz^2,
+    // to order p (gamma to order p first: the recurrence stopped at p - 1).
+    g = integrator.gamma();
+    std::array<Coefficients, 4> q;
+    for (int i = 0; i < 4; ++i) q[i] = series_of(x, i, p);
+    const Coefficients u1 = series_of(x, System::kU1, p), u2 = series_of(x, System::kU2, p);
+    g.g1[p] = 2.0 * (cauchy(q[1], q[3], p) - cauchy(q[0], q[2], p));
+    g.g2[p] = 2.0 * (cauchy(q[2], q[3], p) + cauchy(q[0], q[1], p));
+    for (int n = 0; n <= p; ++n) {
+      rate[n] = cauchy(g.g1, u2, n) - cauchy(g.g2, u1, n);
+      kz[n] = cauchy(q[0], q[0], n) - cauchy(q[1], q[1], n) - cauchy(q[2], q[2], n) + cauchy(q[3], q[3], n);
+    }
+    kz[0] -= cos_stop;  // k_zeta - cos(stop): negative once the tilt passes stop_above
+
+    double a = 0.0, ra = horner(rate, p, 0.0), ka = horner(kz, p, 0.0);
+    for (int k = 1; k <= kPieces; ++k) {
+      const double b = h * k / kPieces, rb = horner(rate, p, b), kb = horner(kz, p, b);
+      double crossing = -1.0;
+      if (threshold && ka >= 0.0 && kb < 0.0) crossing = polynomial_root(kz, p, a, b, ka, kb, h);
+      if ((ra < 0.0 && rb > 0.0) || (ra > 0.0 && rb < 0.0)) {
+        const double extremum = polynomial_root(rate, p, a, b, ra, rb, h);
+        if (crossing < 0.0 || extremum < crossing) {
+          integrator.interpolate(t0 + extremum, y);
+          note(t0 + extremum, tilt_of(y));
+        }
+      }
+      if (crossing >= 0.0) {
+        integrator.interpolate(t0 + crossing, y);
+        note(t0 + crossing, tilt_of(y));
+        e.exceeded = true;
+        e.t_end = t0 + crossing;
+        return e;
+      }
+      a = b, ra = rb, ka = kb;
+    }
+    integrator.interpolate(integrator.time(), y);
+    note(integrator.time(), tilt_of(y));
+  }
+  e.t_end = horizon;
+  return e;
+}
+
+}  // namespace
+
+// ---- Public API -------------------------------------------------------------------------------------
+
+int taylor_order(const NonlinearOptions& options) {
+  const double eps = std::min(options.rtol, options.atol);
+  const int p = static_cast<int>(std::ceil(-0.5 * std::log(eps) + 1.0));
+  return std::clamp(p, 2, kTaylorMaxOrder);
+}
+
+void detail::stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
+                           const NonlinearOptions& options, TaylorSummary* summary) {
+  validate(body);
+  detail::refuse_damping(body, "taylor");
+  validate(initial);
+  validate(options);
+  const RigidBodyState rb0 = initial_rigid_body_state(initial);
+  if (body.A == body.B) simulate<SpinFactored>(body, rb0, samples, options, summary);
+  else simulate<Plain>(body, rb0, samples, options, summary);
+}
+
+Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
+                           const NonlinearOptions& options, TaylorSummary* summary) {
+  validate_times(times);
+  Trajectory out;
+  detail::stream_taylor(body, initial, gather(times, out), options, summary);
+  return out;
+}
+
+TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
+                                  double stop_above, const NonlinearOptions& options, TaylorSummary* summary) {
+  validate(body);
+  detail::refuse_damping(body, "taylor");
+  validate(initial);
+  validate(options);
+  if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
+  if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
+  const RigidBodyState rb0 = initial_rigid_body_state(initial);
+  return body.A == body.B ? scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary)
+                          : scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
+}
+
+}  // namespace heavytop
