@@ -1,8 +1,12 @@
 // The cost of one call of the built command, start-up included, as scripts pay it (they call
 // heavytop once per body). Each iteration spawns the binary once, its output to /dev/null, and
 // waits for it. Reported per call:
-//   real time   wall time, spawn to exit (Google Benchmark's manual time)
-//   cpu_ms      CPU time of the child, user + system, from wait4()'s rusage (ms)
+//   real time   wall time, spawn to exit (Google Benchmark's manual time: the mean)
+//   cpu_ms      CPU time of the child, user + system, from wait4()'s rusage: the median of the
+//               run's calls (ms), robust to the odd call slowed by a busy machine
+//   wall_ms     the median of the calls' wall times (ms)
+// (rusage's split into user and system time is by clock ticks, meaningless for a 1 ms process:
+// only their sum is reported.)
 // Run: build/bench/bench_startup --heavytop=build/heavytop --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (medians over repetitions of 100 calls)
 
@@ -14,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -27,8 +32,12 @@ namespace {
 
 std::string g_heavytop = "heavytop";
 
-/// Runs `args` once; returns the child's CPU time (s) and adds the wall time to `wall` (s).
-double run_once(const std::vector<std::string>& args, double& wall) {
+struct Cost {
+  double cpu = 0.0, wall = 0.0;  // s
+};
+
+/// Runs `args` once; false if it could not be run or did not exit with 0.
+bool run_once(const std::vector<std::string>& args, Cost& cost) {
   std::vector<char*> argv;
   argv.push_back(g_heavytop.data());
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -41,33 +50,38 @@ double run_once(const std::vector<std::string>& args, double& wall) {
   pid_t pid = 0;
   if (posix_spawn(&pid, g_heavytop.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
     posix_spawn_file_actions_destroy(&actions);
-    return -1.0;
+    return false;
   }
   posix_spawn_file_actions_destroy(&actions);
   int status = 0;
   rusage usage{};
   wait4(pid, &status, 0, &usage);
-  wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1.0;
+  cost.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  cost.cpu = seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+double median_ms(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : 1e3 * (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
 void Call(benchmark::State& state, std::vector<std::string> args) {
-  double cpu = 0.0;
-  std::size_t calls = 0;
+  std::vector<double> cpu, wall;
   for (auto _ : state) {
-    double wall = 0.0;
-    const double c = run_once(args, wall);
-    if (c < 0.0) {
+    Cost c;
+    if (!run_once(args, c)) {
       state.SkipWithError("the command failed (is --heavytop=PATH right?)");
       return;
     }
-    cpu += c;
-    ++calls;
-    state.SetIterationTime(wall);
+    cpu.push_back(c.cpu);
+    wall.push_back(c.wall);
+    state.SetIterationTime(c.wall);
   }
-  state.counters["cpu_ms"] = benchmark::Counter(1e3 * cpu / static_cast<double>(calls));
+  state.counters["cpu_ms"] = median_ms(cpu);
+  state.counters["wall_ms"] = median_ms(wall);
 }
 
 }  // namespace
