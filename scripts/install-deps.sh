@@ -13,6 +13,7 @@ packages=(
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
   python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
+  strace                              # tests/startup.sh: what a command opens before its work
   clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
 )
 
