@@ -19,15 +19,18 @@
 namespace heavytop::cli {
 
 int run(int argc, char** argv) {
+  const std::string_view first = argc > 1 ? argv[1] : "";
+  // derive lives in its own program, heavytop-derive, so that no other command pays for
+  // loading the computer algebra (GiNaC, CLN, GMP) at start-up; listed below for --help.
+  if (first == "derive") return run_derive(argc, argv, false);
   CLI::App app{"heavytop: the heavy top (a rigid body about a fixed point in gravity), its "
                "approximate models, their stability and motion.\nUnits SI; conventions in SPEC.md. With no command, "
                "writes the built-in example's report to ./heavytop-report."};
   app.require_subcommand(0, 1);
   // When argv[1] names a command, only that command's options are built: building all five
-  // commands' (about 80 options, CLI11 checking each new name against the command's others)
-  // was 60% of the instructions of `heavytop stability` (callgrind). Anything else (no
-  // command, --help, a misspelt command) builds all of them, for the full help and errors.
-  const std::string_view first = argc > 1 ? argv[1] : "";
+  // commands' (CLI11 checks each new option's names against the command's others) was 60% of
+  // the instructions of `heavytop stability` (callgrind). Anything else (no command, --help, a
+  // misspelt command) builds all of them, for the full help and errors.
   const bool one = first == "stability" || first == "simulate" || first == "compare" || first == "sweep" ||
                    first == "report";
   std::map<CLI::App*, cli::Action> actions;
@@ -39,13 +42,10 @@ int run(int argc, char** argv) {
   };
   add("stability", cli::add_stability_command);
   add("simulate", cli::add_simulate_command);
-  // derive lives in its own program, heavytop-derive, so that no other command pays for
-  // loading the computer algebra (GiNaC, CLN, GMP) at start-up; listed here for --help.
   if (!one)
     app.add_subcommand("derive", "Derive the paper's models symbolically: M q'' + G q' + K q = 0, its characteristic "
                                  "polynomial and stability condition (`heavytop derive --help`)")
         ->allow_extras();
-  if (first == "derive") return run_derive(argc, argv, false);
   add("compare", cli::add_compare_command);
   add("sweep", cli::add_sweep_command);
   add("report", cli::add_report_command);
