@@ -1,8 +1,13 @@
 // The cost of one call of the built command, start-up included, as scripts pay it (they call
 // heavytop once per body). Each iteration spawns the binary once, its output to /dev/null, and
 // waits for it. Reported per call:
-//   real time   wall time, spawn to exit (Google Benchmark's manual time)
-//   cpu_ms      CPU time of the child, user + system, from wait4()'s rusage (ms)
+//   real time   wall time, spawn to exit (Google Benchmark's manual time: the mean)
+//   cpu_ms      CPU time of the child, user + system, from wait4()'s rusage: the median of the
+//               run's calls (ms), robust to the odd call slowed by a busy machine
+//   wall_ms     the median of the calls' wall times (ms)
+// (rusage's split into user and system time is by clock ticks, meaningless for a 1 ms process:
+// only their sum is reported.) Call/floor runs bench/startup_floor, a static program that
+// returns at once: what any process costs on this machine at this moment, for reference.
 // Run: build/bench/bench_startup --heavytop=build/heavytop --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (medians over repetitions of 100 calls)
 
@@ -14,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -26,11 +32,16 @@ extern char** environ;
 namespace {
 
 std::string g_heavytop = "heavytop";
+std::string g_floor = "startup_floor";
 
-/// Runs `args` once; returns the child's CPU time (s) and adds the wall time to `wall` (s).
-double run_once(const std::vector<std::string>& args, double& wall) {
+struct Cost {
+  double cpu = 0.0, wall = 0.0;  // s
+};
+
+/// Runs `args` once; false if it could not be run or did not exit with 0.
+bool run_once(const std::string& program, const std::vector<std::string>& args, Cost& cost) {
   std::vector<char*> argv;
-  argv.push_back(g_heavytop.data());
+  argv.push_back(const_cast<char*>(program.c_str()));
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
@@ -39,45 +50,51 @@ double run_once(const std::vector<std::string>& args, double& wall) {
   posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  if (posix_spawn(&pid, g_heavytop.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
+  if (posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
     posix_spawn_file_actions_destroy(&actions);
-    return -1.0;
+    return false;
   }
   posix_spawn_file_actions_destroy(&actions);
   int status = 0;
   rusage usage{};
   wait4(pid, &status, 0, &usage);
-  wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1.0;
+  cost.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  cost.cpu = seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-void Call(benchmark::State& state, std::vector<std::string> args) {
-  double cpu = 0.0;
-  std::size_t calls = 0;
+double median_ms(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : 1e3 * (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+void Call(benchmark::State& state, const std::string* program, std::vector<std::string> args) {
+  std::vector<double> cpu, wall;
   for (auto _ : state) {
-    double wall = 0.0;
-    const double c = run_once(args, wall);
-    if (c < 0.0) {
+    Cost c;
+    if (!run_once(*program, args, c)) {
       state.SkipWithError("the command failed (is --heavytop=PATH right?)");
       return;
     }
-    cpu += c;
-    ++calls;
-    state.SetIterationTime(wall);
+    cpu.push_back(c.cpu);
+    wall.push_back(c.wall);
+    state.SetIterationTime(c.wall);
   }
-  state.counters["cpu_ms"] = benchmark::Counter(1e3 * cpu / static_cast<double>(calls));
+  state.counters["cpu_ms"] = median_ms(cpu);
+  state.counters["wall_ms"] = median_ms(wall);
 }
 
 }  // namespace
 
-BENCHMARK_CAPTURE(Call, stability_json, {"stability", "--format", "json"})->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Call, simulate_first_order_101, {"simulate", "--model", "first-order", "--samples", "101"})
+BENCHMARK_CAPTURE(Call, stability_json, &g_heavytop, {"stability", "--format", "json"})->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Call, simulate_first_order_101, &g_heavytop, {"simulate", "--model", "first-order", "--samples", "101"})
     ->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Call, simulate_nonlinear_1ms, {"simulate", "--model", "nonlinear", "--t-end", "1e-3"})
+BENCHMARK_CAPTURE(Call, simulate_nonlinear_1ms, &g_heavytop, {"simulate", "--model", "nonlinear", "--t-end", "1e-3"})
     ->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Call, derive, {"derive"})->UseManualTime()->Iterations(20)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Call, derive, &g_heavytop, {"derive"})->UseManualTime()->Iterations(20)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Call, floor, &g_floor, {})->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   // --heavytop=PATH: the binary to time (default: heavytop beside this benchmark's build tree).
@@ -86,10 +103,9 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[i], "--heavytop=", 11) == 0) g_heavytop = argv[i] + 11;
     else rest.push_back(argv[i]);
   }
-  if (g_heavytop == "heavytop") {
-    const auto here = std::filesystem::canonical("/proc/self/exe").parent_path();
-    g_heavytop = (here.parent_path() / "heavytop").string();
-  }
+  const auto here = std::filesystem::canonical("/proc/self/exe").parent_path();
+  if (g_heavytop == "heavytop") g_heavytop = (here.parent_path() / "heavytop").string();
+  g_floor = (here / "startup_floor").string();
   int count = static_cast<int>(rest.size());
   benchmark::Initialize(&count, rest.data());
   benchmark::RunSpecifiedBenchmarks();

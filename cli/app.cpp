@@ -2,6 +2,7 @@
 // run(); so does the fuzz target fuzz/fuzz_cli.cpp.
 #include "app.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <string_view>
 #include <iostream>
@@ -19,31 +20,42 @@
 namespace heavytop::cli {
 
 int run(int argc, char** argv) {
+  const std::string_view first = argc > 1 ? argv[1] : "";
+  // derive lives in its own program, heavytop-derive, so that no other command pays for
+  // loading the computer algebra (GiNaC, CLN, GMP) at start-up; listed below for --help.
+  if (first == "derive") return run_derive(argc, argv, false);
   CLI::App app{"heavytop: the heavy top (a rigid body about a fixed point in gravity), its "
                "approximate models, their stability and motion.\nUnits SI; conventions in SPEC.md. With no command, "
                "writes the built-in example's report to ./heavytop-report."};
   app.require_subcommand(0, 1);
+  // When argv[1] names a command, only that command's options are built: building all five
+  // commands' (CLI11 checks each new option's names against the command's others) was 60% of
+  // the instructions of `heavytop stability` (callgrind). Anything else (no command, --help, a
+  // misspelt command) builds all of them, for the full help and errors.
+  using Make = cli::Action (*)(CLI::App&);
+  static constexpr std::pair<std::string_view, Make> kCommands[] = {
+      {"stability", cli::add_stability_command},   {"lifetime", cli::add_lifetime_command},
+      {"simulate", cli::add_simulate_command},     {"compare", cli::add_compare_command},
+      {"sweep", cli::add_sweep_command},           {"report", cli::add_report_command},
+      {"body", cli::add_body_command},             {"precession", cli::add_precession_command},
+      {"fit-decay", cli::add_fit_decay_command},
+  };
+  const bool one = std::any_of(std::begin(kCommands), std::end(kCommands),
+                               [&](const auto& c) { return c.first == first; });
   std::map<CLI::App*, cli::Action> actions;
-  auto add = [&](cli::Action (*make)(CLI::App&)) {
+  auto add = [&](std::string_view command, cli::Action (*make)(CLI::App&)) {
+    if (one && command != first) return;
     const std::size_t before = app.get_subcommands({}).size();
     cli::Action action = make(app);
     actions[app.get_subcommands({}).at(before)] = std::move(action);
   };
-  add(cli::add_stability_command);
-  add(cli::add_lifetime_command);
-  add(cli::add_simulate_command);
-  // derive lives in its own program, heavytop-derive, so that no other command pays for
-  // loading the computer algebra (GiNaC, CLN, GMP) at start-up; listed here for --help.
-  app.add_subcommand("derive", "Derive the paper's models symbolically: M q'' + G q' + K q = 0, its characteristic "
-                               "polynomial and stability condition (`heavytop derive --help`)")
-      ->allow_extras();
-  if (argc > 1 && std::string_view(argv[1]) == "derive") return run_derive(argc, argv, false);
-  add(cli::add_compare_command);
-  add(cli::add_sweep_command);
-  add(cli::add_report_command);
-  add(cli::add_body_command);
-  add(cli::add_precession_command);
-  add(cli::add_fit_decay_command);
+  for (const auto& [command, make] : kCommands) {
+    add(command, make);
+    if (command == "simulate" && !one)  // derive after simulate in the help, as before
+      app.add_subcommand("derive", "Derive the paper's models symbolically: M q'' + G q' + K q = 0, its characteristic "
+                                   "polynomial and stability condition (`heavytop derive --help`)")
+          ->allow_extras();
+  }
 
   io::remove_temporaries_on_signals();
   return run_reporting_errors(app, [&] {
