@@ -22,7 +22,7 @@ __all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotati
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
-IntegratorName = Literal["adaptive", "splitting"]
+IntegratorName = Literal["auto", "taylor", "dop853", "dopri5", "adaptive", "splitting"]
 DeriveMethod = Literal["euler-moving", "euler-fixed", "euler-body", "lagrange"]
 Sequence = Literal["phi-theta", "theta-phi"]
 
@@ -90,9 +90,12 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float
         samples       rows, at t_i = i t_end / (samples - 1) (>= 2; default 1001)  [--samples]
         method        linear models: "analytic" (closed form, the default) |
                       "numeric" (matrix exponential); linear models only          [--method]
-        integrator    nonlinear: "adaptive" (Dormand-Prince 5(4) with error
-                      control, the default) | "splitting" (fixed step,
-                      structure-preserving: bounded energy error over long runs)  [--integrator]
+        integrator    nonlinear: "auto" (the default: the fastest for the body and
+                      tolerance, docs/integrators.md) | "taylor" (Taylor series) |
+                      "dop853" (Dormand-Prince 8(5,3)) | "dopri5" or "adaptive"
+                      (Dormand-Prince 5(4); the one that takes damping) |
+                      "splitting" (fixed step, structure-preserving: bounded
+                      energy error over long runs)                                [--integrator]
         rtol          nonlinear: relative tolerance per step (default 1e-12)      [--rtol]
         atol          nonlinear: absolute tolerance per step (default 1e-12)      [--atol]
         step          s, splitting: the fixed step (default 1e-3)                 [--step]

@@ -76,7 +76,7 @@ def simulate(
     t_end: float,
     samples: int,
     method: Optional[Literal["analytic", "numeric"]] = None,
-    integrator: Optional[Literal["adaptive", "splitting"]] = None,
+    integrator: Optional[Literal["auto", "taylor", "dop853", "dopri5", "adaptive", "splitting"]] = None,
     rtol: Optional[float] = None,
     atol: Optional[float] = None,
     step: Optional[float] = None,

@@ -50,8 +50,8 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
   require_positive("t_end", t_end);
   require_count("samples", samples, 2, 100'000'000);
   if (method && !linear) throw InvalidInput("method", "applies to the linear models only");
-  const auto chosen = integrator_from_name(integrator.value_or("adaptive"));
-  if (!chosen) throw InvalidInput("integrator", "must be adaptive or splitting");
+  const auto chosen = integrator_from_name(integrator.value_or("auto"));  // the command line's default
+  if (!chosen) throw InvalidInput("integrator", "must be auto, taylor, dop853, dopri5 (adaptive) or splitting");
   const std::pair<const char*, bool> nonlinear_only[] = {
       {"integrator", integrator.has_value()}, {"step", step.has_value()}, {"order", order.has_value()},
       {"max_steps", max_steps.has_value()}};
