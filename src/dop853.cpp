@@ -226,7 +226,6 @@ class Dop853 {
   double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_done_ = 0.0;
 };
 
-constexpr std::size_t kStepsPerProgress = 64;
 
 }  // namespace
 
@@ -252,10 +251,7 @@ void detail::stream_dop853(const Body& body, const InitialState& initial, const 
     ConservedQuantities q = initial_q;
     AxisAngles a = a0;
     if (t > 0.0) {
-      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
-        integrator.step();
-        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
-      }
+      advance_to(integrator, t, options.progress);
       integrator.interpolate(t, x);
       const RigidBodyState rb = from_vector(x);
       q = conserved_quantities(body, rb);

@@ -450,8 +450,6 @@ class Integrator {
   double t_ = 0.0, t_old_ = 0.0, end_t_ = 0.0, dt_ = 0.0;
 };
 
-// Steps between two progress calls inside a sample interval (~20 us of work each).
-constexpr std::size_t kStepsPerProgress = 64;
 
 // The damped body's extra columns: what its torques took away (each the balance of a
 // conserved quantity: energy_drift + dissipated_work = 0, and so on), and the motor's torque.
@@ -489,11 +487,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
     ConservedQuantities q = initial;
     AxisAngles a = a0;
     if (t > 0.0) {
-      // Progress also between samples, so that a caller can stop a long run at once.
-      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
-        integrator.step();
-        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
-      }
+      advance_to(integrator, t, options.progress);
       integrator.interpolate(t, x);
       q = conserved_quantities(body, to_rigid_body(x));
       a = angles_of(x);

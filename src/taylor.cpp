@@ -335,8 +335,6 @@ class TaylorIntegrator {
   double t_ = 0.0, t_old_ = 0.0, h_ = 0.0;
 };
 
-// Steps between two progress calls inside a sample interval.
-constexpr std::size_t kStepsPerProgress = 64;
 
 template <class System>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
@@ -356,10 +354,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
     ConservedQuantities q = initial;
     AxisAngles a = a0;
     if (t > 0.0) {
-      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
-        integrator.step();
-        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
-      }
+      advance_to(integrator, t, options.progress);
       integrator.interpolate(t, x);
       const RigidBodyState rb = System::rigid_body(x);
       q = conserved_quantities(body, rb);

@@ -161,6 +161,19 @@ inline AxisAngles axis_angles_of(const RigidBodyState& rb) {
                      rb.omega.y() * rb.attitude.col(0) - rb.omega.x() * rb.attitude.col(1));
 }
 
+// Steps between two progress calls inside a sample interval (~20 us of work each).
+inline constexpr std::size_t kStepsPerProgress = 64;
+
+// Steps a dense-output integrator (time(), step()) until it has passed t, calling `progress`
+// every kStepsPerProgress steps too, so that a caller can stop a long run between samples.
+template <class Integrator>
+void advance_to(Integrator& integrator, double t, const std::function<void(double)>& progress) {
+  for (std::size_t steps = 1; integrator.time() < t; ++steps) {
+    integrator.step();
+    if (progress && steps % kStepsPerProgress == 0) progress(std::min(t, integrator.time()));
+  }
+}
+
 // One sample's angle columns.
 inline void push_angles(Trajectory& out, double t, const AxisAngles& a) {
   out.t.push_back(t);
