@@ -627,6 +627,7 @@ Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
 void detail::stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,
                               const NonlinearOptions& options, NonlinearSummary* summary) {
   validate(body);
+  refuse_general(body, "this principal-axes integrator (simulate() and simulate_general_body() take it)");
   validate(initial);
   validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
@@ -646,6 +647,7 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
                            double stop_above, const NonlinearOptions& options,
                            NonlinearSummary* summary) {
   validate(body);
+  refuse_general(body, "the tilt scan (sweep, lifetime, the wander)");
   validate(initial);
   validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0))
