@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <complex>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -326,6 +327,64 @@ TEST(GeneralBody, OnlyTheNonlinearModelByDopri5TakesIt) {
     o.integrator = i;
     EXPECT_TRUE(simulate(Model::Nonlinear, body, state, times, o).summary.ok());
   }
+}
+
+}  // namespace
+}  // namespace heavytop
+
+namespace heavytop {
+namespace {
+
+// An unbalanced gyroscope (docs/general-body.md, "Coning"): a symmetric top (A = B) whose centre of
+// mass is e off its axis. Near the vertical, with u = k_xi + i k_eta, the first-order equation is
+//     i A u'' + C w0 u' - i m g R u = i m g e exp(i w0 t),
+// the offset's weight a torque turning with the body; its forced solution is the coning
+//     u = U exp(i w0 t),  U = m g e / ((C - A) w0^2 - m g R).
+// Started on it, the axis cones at the spin frequency with amplitude |U|.
+TEST(GeneralBody, UnbalancedGyroscopeConesAtTheSpinFrequencyWithTheFirstOrderAmplitude) {
+  Body top = example_toy_top();
+  top.general.offset_x = 1e-4;  // m, the ISO 1940 scale of a poorly balanced small rotor
+  const double w0 = 200.0;
+  const double U = top.mass * top.gravity * top.general.offset_x / ((top.C - top.A) * w0 * w0 - top.mgR());
+  const InitialState state = make_state(w0, U, 0.0, 0.0, -w0 * U);  // u(0) = U, u'(0) = i w0 U
+  const double period = 2.0 * kPi / w0;
+  const auto times = times_to(50.0 * period, 5001);
+  SimulateOptions options;
+  options.adaptive = tight();
+  const Simulation run = simulate(Model::Nonlinear, top, state, times, options);
+  ASSERT_TRUE(run.summary.ok()) << run.summary.message;
+  double amplitude_error = 0.0, phase_error = 0.0;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const Eigen::Vector3d k = test_support::axis_of(run.trajectory.theta[i], run.trajectory.phi[i]);
+    const std::complex<double> u(k.x(), k.y()), expected = U * std::exp(std::complex<double>(0.0, w0 * times[i]));
+    amplitude_error = std::max(amplitude_error, std::abs(std::abs(u) - std::abs(U)) / std::abs(U));
+    phase_error = std::max(phase_error, std::abs(std::arg(u / expected)));
+  }
+  RecordProperty("coning_amplitude_rad", sci(std::abs(U)));
+  RecordProperty("coning_relative_amplitude_and_phase_error", sci(amplitude_error) + " " + sci(phase_error));
+  EXPECT_LT(amplitude_error, 1e-3);
+  EXPECT_LT(phase_error, 1e-3);  // rad, over 50 turns: the coning keeps the spin's frequency
+
+  // Started upright instead, the first-order motion adds the free modes exp(i l t), l the roots of
+  // A l^2 - C w0 l + m g R = 0 (slow and fast precession), sized so that u(0) = u'(0) = 0:
+  // u = U e^{i w0 t} + a1 e^{i l1 t} + a2 e^{i l2 t}, a1 + a2 = -U, l1 a1 + l2 a2 = -w0 U.
+  const double root = std::sqrt(top.C * top.C * w0 * w0 - 4.0 * top.A * top.mgR());
+  const double l1 = (top.C * w0 - root) / (2.0 * top.A), l2 = (top.C * w0 + root) / (2.0 * top.A);
+  const double a2 = -U * (w0 - l1) / (l2 - l1), a1 = -U - a2;
+  const Simulation upright = simulate(Model::Nonlinear, top, make_state(w0, 0.0), times, options);
+  ASSERT_TRUE(upright.summary.ok());
+  double largest = 0.0, error = 0.0;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const Eigen::Vector3d k = test_support::axis_of(upright.trajectory.theta[i], upright.trajectory.phi[i]);
+    const double t = times[i];
+    const std::complex<double> I(0.0, 1.0);
+    const std::complex<double> linear = U * std::exp(I * w0 * t) + a1 * std::exp(I * l1 * t) + a2 * std::exp(I * l2 * t);
+    largest = std::max(largest, std::abs(linear));
+    error = std::max(error, std::abs(std::complex<double>(k.x(), k.y()) - linear));
+  }
+  RecordProperty("upright_start_first_order_relative_error", sci(error / largest));
+  EXPECT_GT(largest, 5.0 * std::abs(U));  // the free modes dominate: the check is not the coning alone
+  EXPECT_LT(error / largest, 1e-3);
 }
 
 }  // namespace
