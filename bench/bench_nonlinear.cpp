@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "heavytop/general_body.hpp"
 #include "heavytop/nonlinear.hpp"
 
 namespace {
@@ -104,5 +105,27 @@ void BM_MaxTiltToyTop(benchmark::State& state) {
       kHorizon * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_MaxTiltToyTop)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The general body's path (SPEC section 11, general_body.hpp: plain quaternion state, full
+// tensor, odeint's dopri5) on the toy top over the same 10 s at rtol = atol = 1e-10, end state
+// only: offset 0 (the ordinary body, to set beside BM_NonlinearToyTop/2/10/0, the spin-factored
+// path simulate() keeps for it) and offset_x = 0.1 mm (the unbalanced gyroscope).
+void BM_GeneralBodyToyTop(benchmark::State& state) {
+  heavytop::Body body = heavytop::example_toy_top();
+  body.general.offset_x = state.range(0) ? 1e-4 : 0.0;
+  NonlinearOptions options;
+  options.rtol = options.atol = 1e-10;
+  const std::vector<double> times = heavytop::sample_times(kHorizon, 2);
+  NonlinearSummary summary;
+  for (auto _ : state) {
+    const heavytop::Trajectory tr = heavytop::simulate_general_body(body, toy_state(), times, options, &summary);
+    benchmark::DoNotOptimize(tr.theta.data());
+  }
+  state.counters["sim_s_per_wall_s"] = benchmark::Counter(
+      kHorizon * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["rhs"] = static_cast<double>(summary.rhs_evaluations);
+  state.counters["steps"] = static_cast<double>(summary.steps);
+}
+BENCHMARK(BM_GeneralBodyToyTop)->ArgName("offset")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -119,12 +119,14 @@ void Inputs::resolve(bool allow_general) {
     if (!allow_general) {
       const double gravity = body.gravity;
       body = body_of(assembly_.assembly, gravity, assembly_.names);
-    } else {  // `body` reports it: the moments as they are
-      body.A = assembly_.assembly.A;
-      body.B = assembly_.assembly.B;
-      body.C = assembly_.assembly.C;
-      body.mass = assembly_.assembly.total.mass;
-      body.length = assembly_.assembly.length;
+    } else {  // `body` reports it, `simulate --model nonlinear` integrates it: the tensor as it is
+      const BodyAssembly& a = assembly_.assembly;
+      body.A = a.A;
+      body.B = a.B;
+      body.C = a.C;
+      body.mass = a.total.mass;
+      body.length = a.length;
+      body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
     }
   } else {
     validate(body);
@@ -132,15 +134,31 @@ void Inputs::resolve(bool allow_general) {
     for (const auto& [key, value] : config_.general)
       if (value != 0.0 && !allow_general)
         throw InvalidInput(key, fmt::format("is {:g}: the general body (SPEC section 11: the centre of mass off "
-                                            "the z axis, products of inertia) is not yet integrated by any model "
-                                            "(`heavytop body` reports it)",
+                                            "the z axis, products of inertia) is integrated by `simulate --model "
+                                            "nonlinear` only (`heavytop body` reports it)",
                                             value));
+    const auto given = [&](const char* key) {
+      const auto it = config_.general.find(key);
+      return it == config_.general.end() ? 0.0 : it->second;
+    };
+    body.general = {given("body.Ixy"), given("body.Ixz"), given("body.Iyz"), given("body.offset_x"),
+                    given("body.offset_y")};
   }
   body.damping = damping;
   validate(body);
   validate(state);
   body_ = body;
   state_ = state;
+}
+
+void Inputs::refuse_general(const std::string& what) const {
+  if (!is_general(body_)) return;
+  // A body of parts: body_of() names the part and says by how much it is general.
+  if (!config_.parts.empty()) body_of(assembly_.assembly, body_.gravity, assembly_.names);
+  const char* key = first_general_key(body_);
+  throw InvalidInput(key, fmt::format("is nonzero: the general body (SPEC section 11: the centre of mass off the z "
+                                      "axis, products of inertia) is integrated by `simulate --model nonlinear` "
+                                      "only, not by {}", what));
 }
 
 namespace {

@@ -49,9 +49,15 @@ class Inputs {
   /// Without --config the base is the built-in example (a toy top), so options alone work.
   /// A body made of parts (SPEC section 10) is assembled (meshes read); a general body (the
   /// centre of mass off z, products of inertia; SPEC section 11) is refused naming the part or
-  /// the key unless `allow_general` (`heavytop body`, which only reports it): no model
-  /// integrates it yet.
+  /// the key unless `allow_general` (`heavytop body`, which reports it, and `simulate`, which
+  /// integrates it in nonlinear and calls refuse_general() for every other model); then
+  /// body().general holds its products and offset.
   void resolve(bool allow_general = false);
+
+  /// After resolve(true): throws InvalidInput naming the part (its offset, its products) or the
+  /// key of SPEC section 11 if the body is general, `what` (e.g. "simulate --model first-order")
+  /// taking the ordinary body only.
+  void refuse_general(const std::string& what) const;
 
   const Body& body() const { return body_; }
   const InitialState& state() const { return state_; }

@@ -81,7 +81,7 @@ Action add_simulate_command(CLI::App& app) {
                                     SplittingOptions{}.max_steps));
 
   return [inputs, o] {
-    inputs->resolve();
+    inputs->resolve(/*allow_general=*/true);  // nonlinear integrates it; every other model refuses it below
     // The [simulate] section of the configuration, where the command line says nothing.
     const io::Configuration& config = inputs->configuration();
     apply_setting(config, "simulate.model", o->model_option, o->model);
@@ -97,6 +97,7 @@ Action add_simulate_command(CLI::App& app) {
     const auto model = model_from_name(o->model);
     if (!model) throw InvalidInput("--model", "must be one of " + model_names(", "));
     const bool nonlinear = *model == Model::Nonlinear, linear = linear_kind(*model).has_value();
+    if (!nonlinear) inputs->refuse_general("simulate --model " + o->model);
     if (*model == Model::LagrangeExact) validate_symmetric(inputs->body());
     if (o->method != "analytic" && o->method != "numeric")
       throw InvalidInput("--method", "must be analytic or numeric");

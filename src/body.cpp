@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
 namespace heavytop {
 
 InvalidInput::InvalidInput(std::string key, std::string rule)
@@ -54,6 +57,43 @@ void validate(const Body& body) {
   require_triangle(body.C, body.A, body.B, "body.B",
                    "a real body has C + A >= B (triangle inequality of the moments of inertia)");
   validate(body.damping);
+  const GeneralInertia& g = body.general;
+  require_finite(g.offset_x, "body.offset_x");
+  require_finite(g.offset_y, "body.offset_y");
+  require_finite(g.Ixy, "body.Ixy");
+  require_finite(g.Ixz, "body.Ixz");
+  require_finite(g.Iyz, "body.Iyz");
+  if (g.Ixy == 0.0 && g.Ixz == 0.0 && g.Iyz == 0.0) return;  // diagonal: the checks above suffice
+  const char* key = g.Ixy != 0.0 ? "body.Ixy" : g.Ixz != 0.0 ? "body.Ixz" : "body.Iyz";
+  Eigen::Matrix3d I;
+  I << body.A, -g.Ixy, -g.Ixz, -g.Ixy, body.B, -g.Iyz, -g.Ixz, -g.Iyz, body.C;
+  const Eigen::Vector3d l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  if (!(l[0] > 0.0))
+    throw InvalidInput(key, fmt::format("the inertia tensor [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]] must "
+                                        "be positive definite (its smallest principal moment is {:.6g})", l[0]));
+  // Ascending: the one inequality that can fail is l0 + l1 >= l2.
+  if (l[0] + l[1] < l[2] * (1.0 - kSymmetryTolerance))
+    throw InvalidInput(key, fmt::format("the principal moments {:.6g}, {:.6g}, {:.6g} of the inertia tensor break "
+                                        "the triangle inequality (a real body has I1 + I2 >= I3)", l[0], l[1], l[2]));
+}
+
+bool is_general(const Body& body) noexcept { return !body.general.is_zero(); }
+
+const char* first_general_key(const Body& body) noexcept {
+  const GeneralInertia& g = body.general;
+  if (g.offset_x != 0.0) return "body.offset_x";
+  if (g.offset_y != 0.0) return "body.offset_y";
+  if (g.Ixy != 0.0) return "body.Ixy";
+  if (g.Ixz != 0.0) return "body.Ixz";
+  if (g.Iyz != 0.0) return "body.Iyz";
+  return nullptr;
+}
+
+void refuse_general(const Body& body, const char* what) {
+  if (const char* key = first_general_key(body))
+    throw InvalidInput(key, fmt::format("is nonzero: the general body (SPEC section 11: the centre of mass off the z "
+                                        "axis, products of inertia) is integrated by simulate --model nonlinear only, "
+                                        "not by {}", what));
 }
 
 Body example_toy_top() {

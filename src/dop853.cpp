@@ -232,6 +232,7 @@ class Dop853 {
 void detail::stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
                            const NonlinearOptions& options, NonlinearSummary* summary) {
   validate(body);
+  refuse_general(body, "dop853 (use dopri5 or auto)");
   detail::refuse_damping(body, "dop853");
   validate(initial);
   validate(options);

@@ -265,6 +265,7 @@ std::string FitDecaySummary::BriefReport() const {
 
 DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayOptions& options) {
   validate(body);
+  refuse_general(body, "fit-decay");
   validate(options);
   const bool fit_c = options.fit_spin0;
   validate_data(data, fit_c ? 3 : 2);

@@ -471,6 +471,7 @@ void require_finite_state(const RigidBodyState& s) {
 
 void validate_symmetric(const Body& body) {
   validate(body);
+  refuse_general(body, "lagrange-exact");
   if (!is_symmetric(body))
     throw InvalidInput("body.B",
                        "lagrange-exact needs a symmetric body: B must equal A (to 1e-12 relative)");

@@ -26,6 +26,7 @@ bool LifetimeOptions::IsValid(std::string* why) const {
 
 Lifetime spin_decay(const Body& body, const InitialState& initial, const LifetimeOptions& options) {
   validate(body);
+  refuse_general(body, "lifetime");
   validate(initial);
   detail::throw_if_invalid(first_violation(options));
   validate(options.integrator);

@@ -23,6 +23,7 @@ std::optional<LinearModelKind> linear_model_from_name(std::string_view text) {
 }
 
 LinearModel linear_model(LinearModelKind kind, const Body& body) {
+  refuse_general(body, "the linear models");
   const double A = body.A, B = body.B, C = body.C, k = body.mgR();
   LinearModel m;
   m.kind = kind;

@@ -82,6 +82,7 @@ std::string_view name(LyapunovCertificate certificate) {
 
 LyapunovVerdict lyapunov_stability(const Body& body, double spin) {
   validate(body);
+  refuse_general(body, "the Lyapunov analysis");
   if (!std::isfinite(spin)) throw InvalidInput("motion.spin", "must be a finite number");
   const double s = spin * spin, k = body.mgR();
   const double c1 = difference(body.C, body.A), c2 = difference(body.C, body.B);
@@ -146,6 +147,7 @@ LyapunovVerdict lyapunov_stability(const Body& body, double spin) {
 
 std::vector<SpinInterval> lyapunov_stable_spin_intervals(const Body& body) {
   validate(body);
+  refuse_general(body, "the Lyapunov analysis");
   const double k = body.mgR();
   const double inf = std::numeric_limits<double>::infinity();
   // The candidate stable set in s = w0^2, as (lo, hi): open or closed is settled below by the
@@ -180,6 +182,7 @@ std::vector<SpinInterval> lyapunov_stable_spin_intervals(const Body& body) {
 
 std::optional<double> superfast_spin(const Body& body) {
   validate(body);
+  refuse_general(body, "the Lyapunov analysis");
   const double k = body.mgR();
   double s = 0.0;
   for (double c : {difference(body.C, body.A), difference(body.C, body.B)}) {
@@ -202,6 +205,7 @@ Wander axis_wander(const Body& body, const InitialState& initial, double horizon
   Wander w;
   try {
     validate(body);
+    refuse_general(body, "the Lyapunov analysis");
     validate(initial);
     if (initial.theta0 == 0.0 && initial.phi0 == 0.0 && initial.theta_rate0 == 0.0 &&
         initial.phi_rate0 == 0.0) {

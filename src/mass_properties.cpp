@@ -268,7 +268,7 @@ Body body_of(const BodyAssembly& a, double gravity, const std::vector<std::strin
       what += fmt::format("{}z is not a principal axis (products of inertia Ixy {:.3g}, Ixz {:.3g}, Iyz {:.3g} "
                           "kg m^2; principal axis {:.3g} rad from z)",
                           what.empty() ? "" : "; ", a.Ixy, a.Ixz, a.Iyz, a.principal_tilt);
-    throw InvalidInput(part, what + ": the general body is not yet integrated by any model "
+    throw InvalidInput(part, what + ": the general body is integrated by `simulate --model nonlinear` only "
                                     "(`heavytop body` reports it)");
   }
   Body b;

@@ -621,6 +621,7 @@ Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
 void detail::stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,
                               const NonlinearOptions& options, NonlinearSummary* summary) {
   validate(body);
+  refuse_general(body, "this principal-axes integrator (simulate() and simulate_general_body() take it)");
   validate(initial);
   validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
@@ -640,6 +641,7 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
                            double stop_above, const NonlinearOptions& options,
                            NonlinearSummary* summary) {
   validate(body);
+  refuse_general(body, "the tilt scan (sweep, lifetime, the wander)");
   validate(initial);
   validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0))

@@ -42,6 +42,7 @@ SteadyPrecession steady(const Body& b, double tilt, double spin, double rate) {
 
 PrecessionAnalysis analyse_precession(const Body& body, double tilt, double spin) {
   validate(body);
+  refuse_general(body, "precession");
   if (!is_symmetric(body))
     throw InvalidInput("body.B", "steady precession needs a symmetric body (A = B); for A != B see the "
                                  "permanent rotations");
@@ -75,6 +76,7 @@ PrecessionAnalysis analyse_precession(const Body& body, double tilt, double spin
 
 std::vector<PermanentRotation> permanent_rotations(const Body& body, double tilt) {
   validate(body);
+  refuse_general(body, "precession");
   validate_tilt(tilt);
   std::vector<PermanentRotation> out;
   const double mgR = body.mgR(), c = std::cos(tilt), s = std::sin(tilt);

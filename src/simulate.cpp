@@ -114,7 +114,7 @@ Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerance
   // symmetric body at loose tolerances (errors above ~1e-5) is dopri5 faster, its steps
   // there being cheaper than a Taylor step whose length the nutation bounds.
   // The torques of SPEC section 6 are in dopri5's equations only.
-  if (!body.damping.conservative()) return Integrator::Adaptive;
+  if (!body.damping.conservative() || is_general(body)) return Integrator::Adaptive;
   const double eps = std::min(tolerances.rtol, tolerances.atol);
   return eps > kAutoTaylorBelow && body.A == body.B ? Integrator::Adaptive : Integrator::Taylor;
 }
@@ -175,6 +175,14 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
   }
   if (model == Model::LagrangeExact) validate_symmetric(body);
   validate_damping(model, body, options);
+  const bool general = is_general(body);
+  if (general) {  // SPEC section 11: the nonlinear model by dopri5 only
+    if (model != Model::Nonlinear) refuse_general(body, fmt::format("the {} model", name(model)).c_str());
+    if (options.integrator != Integrator::Auto && options.integrator != Integrator::Adaptive)
+      throw InvalidInput("integrator", fmt::format("{} integrates the ordinary body only: the general body (SPEC "
+                                                   "section 11) is integrated by dopri5 (or auto)",
+                                                   name(options.integrator)));
+  }
   validate_horizon(body, initial, stream.count ? stream.time(stream.count - 1) : 0.0, time_key);
 
   SimulationSummary s;
@@ -220,8 +228,12 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
       if (options.progress) adaptive.progress = options.progress;
       NonlinearSummary summary;
       const Integrator chosen =
-          options.integrator == Integrator::Auto ? choose_integrator(body, adaptive) : options.integrator;
-      if (chosen == Integrator::Taylor) {
+          general ? Integrator::Adaptive
+                  : options.integrator == Integrator::Auto ? choose_integrator(body, adaptive) : options.integrator;
+      if (general) {
+        s.solver = "Dormand-Prince 5(4), general body";
+        detail::stream_general(body, initial, samples, adaptive, &summary);
+      } else if (chosen == Integrator::Taylor) {
         TaylorSummary taylor;
         detail::stream_taylor(body, initial, samples, adaptive, &taylor);
         summary = taylor.work;

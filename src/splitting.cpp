@@ -180,6 +180,7 @@ Trajectory simulate_splitting(const Body& body, const InitialState& initial,
 void detail::stream_splitting(const Body& body, const InitialState& initial, const SampleStream& samples,
                               const SplittingOptions& options, SplittingSummary* summary) {
   validate(body);
+  refuse_general(body, "the splitting integrator (use dopri5 or auto)");
   validate(initial);
   validate(options);
   const double h = options.step;

@@ -471,6 +471,7 @@ int taylor_order(const NonlinearOptions& options) {
 void detail::stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
                            const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
+  refuse_general(body, "the Taylor integrator (use dopri5 or auto)");
   detail::refuse_damping(body, "taylor");
   validate(initial);
   validate(options);
@@ -490,6 +491,7 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above, const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
+  refuse_general(body, "the Taylor integrator (use dopri5 or auto)");
   detail::refuse_damping(body, "taylor");
   validate(initial);
   validate(options);

@@ -221,10 +221,14 @@ mkdir -p elsewhere && (cd elsewhere && "$H" body --config ../mesh.toml --format 
 check "a relative mesh path is relative to the configuration's folder" box_check 1e-3
 mesh_body box.stl m
 check "a general body: stability refuses it" run 2 stability --config mesh.toml --output never.json
-check "... naming the part, the offset and the products" says "body.part\[0\] (box.stl): its centre of mass is .* m off the z axis.*products of inertia.*not yet integrated"
+check "... naming the part, the offset and the products" says "body.part\[0\] (box.stl): its centre of mass is .* m off the z axis.*products of inertia.*integrated by .simulate --model nonlinear. only"
 check "... one line, nothing written" bash -c "[ \$(wc -l < err) -eq 1 ] && test ! -e never.json"
-check "a general body: nonlinear refuses it too (not yet integrated)" run 2 simulate --model nonlinear --config mesh.toml
-check "... saying so" says "not yet integrated"
+check "a general body: simulate --model linearized refuses it, naming the part" run 2 simulate --model linearized --config mesh.toml
+check "... saying which model takes it" says "body.part\[0\] (box.stl): .*integrated by .simulate --model nonlinear. only"
+check "a general body: nonlinear integrates it (SPEC 11)" run 0 simulate --model nonlinear --config mesh.toml --t-end 0.05 --samples 11 --format json
+check "... by the general body's dopri5, its products in the JSON body, energy conserved" py "import json; d = json.load(open('out')); b = d['body']; assert b['Ixy'] != 0 and b['offset_x'] != 0, b; assert d['summary']['max_relative_energy_drift'] < 1e-10, d['summary']"
+check "a general body: --integrator taylor refuses it" run 2 simulate --model nonlinear --integrator taylor --config mesh.toml
+check "... naming --integrator" says "--integrator: taylor integrates the ordinary body only"
 mesh_body open.stl m
 check "an open mesh: exit 2" run 2 body --config mesh.toml
 check "... naming the part and the count of open edges" says "body.part\[0\] (open.stl): .*3 open edges"
@@ -233,12 +237,19 @@ check "the example mesh top: a symmetric body every command accepts" bash -c "
   '$H' body --config '$examples/mesh-top.toml' --format json | grep -q '\"general\": false' &&
   '$H' stability --config '$examples/mesh-top.toml' > /dev/null"
 
-# ---- SPEC 11's keys: reported by body, refused by the models until item 4 integrates them ----
+# ---- SPEC 11's keys: reported by body, integrated by nonlinear, refused by every other model ----
 printf '[body]\nA = 1\nB = 1\nC = 1.5\nmass = 1\nlength = 0.1\nIxy = 0.01\noffset_x = 0.001\n' > general.toml
 check "body reports SPEC 11's keys" run 0 body --config general.toml --format json
 check "... as products and offset" py "import json; b = json.load(open('out')); assert b['products']['xy'] == 0.01 and b['offset']['x'] == 0.001 and b['general']"
-check "simulate --model nonlinear refuses Ixy" run 2 simulate --model nonlinear --config general.toml
-check "... naming body.Ixy and saying it is not yet integrated" says "body.Ixy: is 0.01: .*not yet integrated"
+check "stability refuses Ixy" run 2 stability --config general.toml
+check "... naming body.Ixy and the model that takes it" says "body.Ixy: is 0.01: .*integrated by .simulate --model nonlinear. only"
+check "simulate --model first-order refuses it" run 2 simulate --model first-order --config general.toml
+check "... naming body.offset_x" says "body.offset_x: is nonzero: .*not by simulate --model first-order"
+check "simulate --model nonlinear integrates SPEC 11's keys" run 0 simulate --model nonlinear --config general.toml --t-end 0.5 --samples 6
+check "... a CSV with the nonlinear columns" bash -c "head -1 out | grep -q '^t,theta,phi,theta_rate,phi_rate,energy,vertical_momentum'"
+printf '[body]\nA = 1\nB = 1\nC = 1.5\nmass = 1\nlength = 0.1\nIxy = 1.2\n' > impossible.toml
+check "a tensor that is not positive definite: exit 2" run 2 simulate --model nonlinear --config impossible.toml
+check "... naming body.Ixy" says "body.Ixy: the inertia tensor .* must be positive definite"
 
 # ---- precession -------------------------------------------------------------------------------
 check "precession --tilt" run 0 precession --tilt 0.4 --spin 200 --format json

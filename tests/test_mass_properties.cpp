@@ -333,7 +333,7 @@ TEST(Assembly, ProductsAndOffsetAreReportedAndRefused) {
     FAIL() << "a general body became a Body";
   } catch (const InvalidInput& e) {
     EXPECT_EQ(e.key(), "body.part[1] (lump.stl)");
-    EXPECT_NE(e.rule().find("not yet integrated"), std::string::npos);
+    EXPECT_NE(e.rule().find("integrated by `simulate --model nonlinear` only"), std::string::npos);
   }
   // Below 1e-9 of the body's size: zero. A box centred 1e-12 m off the axis.
   const double d = 1e-12;

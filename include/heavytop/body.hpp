@@ -22,6 +22,25 @@ class InvalidInput : public std::invalid_argument {
   std::string rule_;
 };
 
+/// The general body's terms (SPEC section 11), in the body axes x, y, z of Body (which are then
+/// not principal): products of inertia about O, the inertia tensor being
+/// [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]], and the centre of mass's x and y, the
+/// centre of mass being (offset_x, offset_y, length). All zero (the default): the ordinary body.
+/// Only the nonlinear model integrates a nonzero one (general_body.hpp); every other analysis
+/// refuses it (refuse_general()).
+struct GeneralInertia {
+  double Ixy = 0.0;       ///< kg m^2, integral of x y dm about O
+  double Ixz = 0.0;       ///< kg m^2, integral of x z dm about O
+  double Iyz = 0.0;       ///< kg m^2, integral of y z dm about O
+  double offset_x = 0.0;  ///< m, the centre of mass's x in body axes
+  double offset_y = 0.0;  ///< m, the centre of mass's y in body axes
+
+  /// True if every term is exactly zero (the ordinary body of SPEC section 1).
+  bool is_zero() const noexcept {
+    return Ixy == 0.0 && Ixz == 0.0 && Iyz == 0.0 && offset_x == 0.0 && offset_y == 0.0;
+  }
+};
+
 /// A rigid body turning about a fixed point O in uniform gravity (SPEC section 1).
 /// Body frame: principal axes x, y, z through O, z the spin (symmetry) axis.
 struct Body {
@@ -33,6 +52,10 @@ struct Body {
   double length = 0.0;   ///< m, R: signed distance from O to the centre of mass along body +z
                          ///< (> 0: a top on its tip, < 0: a hanging body)
   Damping damping;       ///< the torques of SPEC section 6 (default none: conservative)
+  /// The general body's products and offsets (SPEC section 11; default zero: x, y, z are
+  /// principal axes and the centre of mass is on z). Nonzero, A, B, C are the tensor's
+  /// diagonal about body axes that are not principal.
+  GeneralInertia general;
 
   /// N m, the gravitational moment m g R (signed like R).
   double mgR() const noexcept { return mass * gravity * length; }
@@ -57,8 +80,21 @@ double gravity_time(const Body& body) noexcept;
 
 /// Throws InvalidInput for the first rule of SPEC section 1 that `body` breaks:
 /// A, B, C, mass finite and > 0; gravity finite and >= 0; length finite;
-/// the triangle inequalities A + B >= C, B + C >= A, C + A >= B; then validate(damping).
+/// the triangle inequalities A + B >= C, B + C >= A, C + A >= B; then validate(damping); then
+/// SPEC section 11 for `general`: each term finite, the tensor positive definite and its
+/// principal moments satisfying the triangle inequalities (key: the first nonzero product).
 void validate(const Body& body);
+
+/// True if the body has a nonzero term of SPEC section 11 (body.general not zero).
+bool is_general(const Body& body) noexcept;
+
+/// The general body's key ("body.offset_x", "body.offset_y", "body.Ixy", "body.Ixz",
+/// "body.Iyz") of its first nonzero term, or nullptr for an ordinary body.
+const char* first_general_key(const Body& body) noexcept;
+
+/// Throws InvalidInput naming the first nonzero key of SPEC section 11 (e.g. "body.Ixy") when
+/// `body` is general: `what` (e.g. "the linear models") covers only the ordinary body.
+void refuse_general(const Body& body, const char* what);
 
 /// The built-in example: a realistic toy top (SI units), spun well above its critical spin.
 Body example_toy_top();

@@ -120,8 +120,8 @@ BodyAssembly assemble(const std::vector<MassProperties>& parts);
 
 /// The Body (A, B, C, mass, length; `gravity` m/s^2) of an axisymmetric-principal assembly.
 /// Throws InvalidInput naming the main part ("body.part[i]" + `part_names[i]`) and the size of
-/// the products or the offset when the assembly is general: no model integrates the general
-/// body yet (SPEC section 11 is not built).
+/// the products or the offset when the assembly is general: only the nonlinear model integrates
+/// the general body (SPEC section 11, general_body.hpp; Body::general).
 Body body_of(const BodyAssembly& assembly, double gravity, const std::vector<std::string>& part_names);
 
 }  // namespace heavytop

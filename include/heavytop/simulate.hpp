@@ -63,7 +63,8 @@ std::optional<Integrator> integrator_from_name(std::string_view name);
 inline constexpr double kAutoTaylorBelow = 1e-4;
 /// The integrator Auto stands for with these tolerances and this body (Taylor or Adaptive,
 /// never Auto or Splitting); the rule and its measurements are in docs/integrators.md. A
-/// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques.
+/// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques,
+/// and so does a general body (SPEC section 11, general_body.hpp).
 Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances);
 
 /// Settings of simulate(); each applies to the models named.
@@ -154,7 +155,10 @@ SimulationSummary simulate_streaming(Model model, const Body& body, const Initia
 
 /// The motion of `model` for `body` from `initial` (SPEC section 2 mapping) at `times` (s;
 /// finite, >= 0, non-decreasing). Columns theta, phi, theta_rate, phi_rate for every model;
-/// the nonlinear integrators add the conserved quantities (nonlinear.hpp). Throws
+/// the nonlinear integrators add the conserved quantities (nonlinear.hpp). A general body
+/// (SPEC section 11, is_general()) is integrated by general_body.hpp's dopri5, for Nonlinear with
+/// Integrator::Auto or Adaptive only (InvalidInput "integrator" otherwise, the body's key for
+/// every other model, a "damping.*" key when damped). Throws
 /// InvalidInput for bad input (the body, the state, the options; LagrangeExact needs A = B;
 /// times beyond longest_meaningful_time()); a numerical failure, including a value that is
 /// not finite (a linear model grown beyond a double), is reported in the summary

@@ -85,8 +85,8 @@ std::string body_text(const AssembledBody& body, double gravity) {
                      a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y);
   if (a.general()) {
     out << fmt::format("\nNOT a body of the models: {}{}. The principal axis nearest z is {:.3g} rad ({:.3g} deg) "
-                       "from it.\nThe general body (SPEC section 11) is not yet integrated by any model: every "
-                       "command but `body` refuses it.\n",
+                       "from it.\nThe general body (SPEC section 11) is integrated by `simulate --model nonlinear` "
+                       "only: every other model and command refuses it.\n",
                        a.offset_x != 0.0 || a.offset_y != 0.0
                            ? fmt::format("the centre of mass is {:.3g} m off the z axis",
                                          std::hypot(a.offset_x, a.offset_y))

@@ -18,7 +18,15 @@ Json optional_number(const std::optional<double>& x) { return x ? Json(*x) : Jso
 
 /// The "body" object of every JSON output.
 Json body_json(const Body& b) {
-  return {{"A", b.A}, {"B", b.B}, {"C", b.C}, {"mass", b.mass}, {"gravity", b.gravity}, {"length", b.length}};
+  Json out = {{"A", b.A}, {"B", b.B}, {"C", b.C}, {"mass", b.mass}, {"gravity", b.gravity}, {"length", b.length}};
+  if (is_general(b)) {  // SPEC section 11's keys, only when the body has them (ordinary JSON unchanged)
+    out["offset_x"] = b.general.offset_x;
+    out["offset_y"] = b.general.offset_y;
+    out["Ixy"] = b.general.Ixy;
+    out["Ixz"] = b.general.Ixz;
+    out["Iyz"] = b.general.Iyz;
+  }
+  return out;
 }
 
 /// The "damping" object (SPEC section 6), beside "body" when the body is not conservative.

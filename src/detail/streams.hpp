@@ -18,6 +18,10 @@ void stream_splitting(const Body& body, const InitialState& initial, const Sampl
 void stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
                    const NonlinearOptions& options, TaylorSummary* summary);
 
+// The general body (SPEC section 11), general_body.cpp: the conservative body only.
+void stream_general(const Body& body, const InitialState& initial, const SampleStream& samples,
+                    const NonlinearOptions& options, NonlinearSummary* summary);
+
 void stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
                    const NonlinearOptions& options, NonlinearSummary* summary);
 

@@ -1,0 +1,263 @@
+#include "heavytop/general_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+#include <fmt/format.h>
+
+#include "detail/integration.hpp"
+#include "detail/streams.hpp"
+
+namespace heavytop {
+
+using namespace detail;
+
+Eigen::Matrix3d inertia_tensor(const Body& body) {
+  const GeneralInertia& g = body.general;
+  Eigen::Matrix3d I;
+  I << body.A, -g.Ixy, -g.Ixz, -g.Ixy, body.B, -g.Iyz, -g.Ixz, -g.Iyz, body.C;
+  return I;
+}
+
+Eigen::Vector3d centre_of_mass(const Body& body) {
+  return {body.general.offset_x, body.general.offset_y, body.length};
+}
+
+GeneralRigidBodySystem::GeneralRigidBodySystem(const Body& body)
+    : inertia(inertia_tensor(body)),
+      inverse(inertia.inverse()),
+      weight(body.mass * body.gravity * centre_of_mass(body)) {}
+
+void GeneralRigidBodySystem::operator()(const RigidBodyVector& x, RigidBodyVector& dxdt, double) const {
+  const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
+  const Eigen::Vector3d w(x[4], x[5], x[6]);
+  // q' = q (x) (0, w) / 2, as RigidBodySystem.
+  dxdt[0] = 0.5 * (-qx * w[0] - qy * w[1] - qz * w[2]);
+  dxdt[1] = 0.5 * (qw * w[0] + qy * w[2] - qz * w[1]);
+  dxdt[2] = 0.5 * (qw * w[1] + qz * w[0] - qx * w[2]);
+  dxdt[3] = 0.5 * (qw * w[2] + qx * w[1] - qy * w[0]);
+  // gamma = R^T e_zeta: the third row of R(q), divided by |q|^2.
+  const double n2 = qw * qw + qx * qx + qy * qy + qz * qz;
+  const Eigen::Vector3d gamma(2.0 * (qx * qz - qw * qy) / n2, 2.0 * (qy * qz + qw * qx) / n2,
+                              (qw * qw - qx * qx - qy * qy + qz * qz) / n2);
+  // I w' = (I w) x w + m g gamma x c.
+  const Eigen::Vector3d rate = inverse * ((inertia * w).cross(w) + gamma.cross(weight));
+  dxdt[4] = rate[0];
+  dxdt[5] = rate[1];
+  dxdt[6] = rate[2];
+}
+
+ConservedQuantities general_conserved_quantities(const Body& body, const RigidBodyState& x) {
+  const Eigen::Vector3d L = inertia_tensor(body) * x.omega;
+  const Eigen::Vector3d gamma = x.attitude.row(2).transpose();  // R^T e_zeta
+  ConservedQuantities q;
+  q.energy = 0.5 * x.omega.dot(L) + body.mass * body.gravity * centre_of_mass(body).dot(gamma);
+  q.vertical_momentum = L.dot(gamma);
+  q.axial_momentum = L.z();
+  return q;
+}
+
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using State = RigidBodyVector;
+
+void check_general(const Body& body, const NonlinearOptions& options) {
+  validate(body);
+  validate(options);
+  if (!body.damping.conservative())
+    throw InvalidInput(body.damping.transverse != 0.0 ? "damping.transverse"
+                       : body.damping.axial != 0.0    ? "damping.axial"
+                       : body.damping.friction != 0.0 ? "damping.friction"
+                                                      : "motion.driven",
+                       "the general body (SPEC section 11) is integrated without damping, friction or motor only");
+}
+
+// Drift scales of the general body (integration.hpp's scales_of() for diag(A, B, C), c = R e3).
+Scales general_scales(const Body& body, const RigidBodyState& x0) {
+  const Eigen::Matrix3d I = inertia_tensor(body);
+  Scales s;
+  s.energy = 0.5 * x0.omega.dot(I * x0.omega) + body.mass * body.gravity * centre_of_mass(body).norm();
+  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues()[2];
+  s.momentum = std::sqrt(2.0 * largest * s.energy);
+  if (!(s.energy > 0.0)) s.energy = 1.0;
+  if (!(s.momentum > 0.0)) s.momentum = 1.0;
+  return s;
+}
+
+// Dormand-Prince 5(4) with its continuous extension, one accepted step at a time (the pattern
+// of nonlinear.cpp's Integrator, without its spin-factored variables and damping).
+class GeneralIntegrator {
+ public:
+  using Stepper = odeint::runge_kutta_dopri5<State>;
+  using Controlled = odeint::controlled_runge_kutta<Stepper>;
+
+  GeneralIntegrator(const Body& body, const RigidBodyState& x0, double horizon, const NonlinearOptions& options,
+                    NonlinearSummary* summary)
+      : body_(body), system_(body), controlled_(Controlled::error_checker_type(options.atol, options.rtol)),
+        max_steps_(options.max_steps), summary_(summary), x_(to_vector(x0)) {
+    system_(x_, dxdt_, 0.0);
+    dt_ = initial_step(options, horizon);
+    if (summary_) {
+      *summary_ = NonlinearSummary{};
+      summary_->symmetric = false;
+      summary_->rhs_evaluations = 1;
+      scales_ = general_scales(body, x0);
+      initial_ = general_conserved_quantities(body, x0);
+    }
+  }
+
+  double time() const { return t_; }
+
+  void step() {
+    commit();
+    x_old_ = x_;
+    dxdt_old_ = dxdt_;
+    t_old_ = t_;
+    int rejections = 0;
+    for (;;) {
+      if (attempts_ >= max_steps_)
+        throw std::runtime_error(fmt::format("nonlinear: more than max_steps = {} integration steps before t = {:.6g} "
+                                             "s (raise max_steps or loosen rtol/atol)", max_steps_, t_));
+      if (!(t_ + dt_ > t_) || ++rejections > 100)
+        throw std::runtime_error(fmt::format(
+            "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_));
+      ++attempts_;
+      const double t_before = t_;
+      const auto result = controlled_.try_step(system_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_);
+      if (summary_) summary_->rhs_evaluations += 6;  // FSAL
+      if (result == odeint::success) {
+        if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
+          throw std::runtime_error(
+              fmt::format("nonlinear: the state stopped being finite at t = {:.6g} s", t_before));
+        break;
+      }
+      if (summary_) ++summary_->rejected_steps;
+    }
+    if (summary_) {
+      ++summary_->steps;
+      summary_->final_time = t_;
+      note_drift(*summary_, general_conserved_quantities(body_, from_vector(x_)), initial_, scales_);
+    }
+  }
+
+  // The state at t in [previous step's start, time()] from the continuous extension.
+  void interpolate(double t, State& out) const {
+    if (t == t_) {
+      out = x_;
+      return;
+    }
+    controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, x_, dxdt_, t_);
+  }
+
+ private:
+  double initial_step(const NonlinearOptions& o, double horizon) const {
+    // Hairer's first guess, as nonlinear.cpp.
+    double largest = 0.0;
+    for (double v : x_) largest = std::max(largest, std::abs(v));
+    double d0 = 0.0, d1 = 0.0;
+    for (std::size_t i = 0; i < x_.size(); ++i) {
+      const double sc = std::max(o.atol + o.rtol * std::abs(x_[i]), o.rtol * largest);
+      d0 += (x_[i] / sc) * (x_[i] / sc);
+      d1 += (dxdt_[i] / sc) * (dxdt_[i] / sc);
+    }
+    double h = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 : 0.01 * std::sqrt(d0 / d1);
+    if (!(h > 0.0 && std::isfinite(h))) h = 1e-6;
+    if (horizon > 0.0) h = std::min(h, horizon);
+    return h;
+  }
+
+  // Back onto |q| = 1 before each step (the quaternion's rate scales with it).
+  void commit() {
+    const double norm = std::sqrt(x_[0] * x_[0] + x_[1] * x_[1] + x_[2] * x_[2] + x_[3] * x_[3]);
+    if (summary_)
+      summary_->max_quaternion_norm_error = std::max(summary_->max_quaternion_norm_error, std::abs(norm - 1.0));
+    for (int i = 0; i < 4; ++i) {
+      x_[i] /= norm;
+      dxdt_[i] /= norm;
+    }
+  }
+
+  const Body& body_;
+  GeneralRigidBodySystem system_;
+  Controlled controlled_;
+  std::size_t max_steps_;
+  NonlinearSummary* summary_;
+  std::size_t attempts_ = 0;
+  Scales scales_;
+  ConservedQuantities initial_;
+  State x_, dxdt_{}, x_old_{}, dxdt_old_{};
+  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+};
+
+constexpr std::size_t kStepsPerProgress = 64;
+
+// Calls sample(i, t, state) for each sample time, the state at t = 0 being x0 itself.
+template <class Sample>
+void run_general(const Body& body, const RigidBodyState& x0, std::size_t count,
+                 const std::function<double(std::size_t)>& time, const NonlinearOptions& options,
+                 NonlinearSummary* summary, const Sample& sample) {
+  const double horizon = count == 0 ? 0.0 : time(count - 1);
+  GeneralIntegrator integrator(body, x0, horizon, options, summary);
+  State x{};
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = time(i);
+    if (t > 0.0) {
+      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
+        integrator.step();
+        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
+      }
+      integrator.interpolate(t, x);
+      sample(i, t, from_vector(x));
+    } else {
+      sample(i, t, x0);
+    }
+    if (options.progress) options.progress(t);
+  }
+}
+
+}  // namespace
+
+std::vector<RigidBodyState> integrate_general_body(const Body& body, const RigidBodyState& x0,
+                                                   const std::vector<double>& times, const NonlinearOptions& options,
+                                                   NonlinearSummary* summary) {
+  check_general(body, options);
+  validate_times(times);
+  std::vector<RigidBodyState> out(times.size());
+  run_general(body, x0, times.size(), [&times](std::size_t i) { return times[i]; }, options, summary,
+              [&out](std::size_t i, double, const RigidBodyState& x) { out[i] = x; });
+  return out;
+}
+
+void detail::stream_general(const Body& body, const InitialState& initial, const SampleStream& samples,
+                            const NonlinearOptions& options, NonlinearSummary* summary) {
+  check_general(body, options);
+  validate(initial);
+  const RigidBodyState x0 = initial_rigid_body_state(initial);
+  const ConservedQuantities q0 = general_conserved_quantities(body, x0);
+  const std::size_t room = std::min(samples.count, samples.chunk);
+  Trajectory out;
+  out.reserve(room);
+  add_conserved_columns(out, room);
+  run_general(body, x0, samples.count, samples.time, options, summary,
+              [&](std::size_t i, double t, const RigidBodyState& x) {
+                push_angles(out, t, axis_angles_of(x));
+                push_conserved(out, i == 0 && t == 0.0 ? q0 : general_conserved_quantities(body, x), q0);
+                maybe_flush(samples, out, i + 1 == samples.count);
+              });
+}
+
+Trajectory simulate_general_body(const Body& body, const InitialState& initial, const std::vector<double>& times,
+                                 const NonlinearOptions& options, NonlinearSummary* summary) {
+  validate_times(times);
+  Trajectory out;
+  detail::stream_general(body, initial, gather(times, out), options, summary);
+  return out;
+}
+
+}  // namespace heavytop
