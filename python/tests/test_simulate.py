@@ -98,7 +98,8 @@ def test_the_gil_is_released_while_the_core_computes():
 
     def work():
         started.set()
-        heavytop.simulate(body, **heavytop.example_motion(), t_end=1000.0, samples=2001)
+        # dopri5: a workload long enough to tell (the default, Taylor, does it in ~50 ms)
+        heavytop.simulate(body, **heavytop.example_motion(), t_end=1000.0, samples=2001, integrator="dopri5")
         done.set()
 
     thread = threading.Thread(target=work)
