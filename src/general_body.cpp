@@ -157,19 +157,7 @@ class GeneralIntegrator {
 
  private:
   double initial_step(const NonlinearOptions& o, double horizon) const {
-    // Hairer's first guess, as nonlinear.cpp.
-    double largest = 0.0;
-    for (double v : x_) largest = std::max(largest, std::abs(v));
-    double d0 = 0.0, d1 = 0.0;
-    for (std::size_t i = 0; i < x_.size(); ++i) {
-      const double sc = std::max(o.atol + o.rtol * std::abs(x_[i]), o.rtol * largest);
-      d0 += (x_[i] / sc) * (x_[i] / sc);
-      d1 += (dxdt_[i] / sc) * (dxdt_[i] / sc);
-    }
-    double h = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 : 0.01 * std::sqrt(d0 / d1);
-    if (!(h > 0.0 && std::isfinite(h))) h = 1e-6;
-    if (horizon > 0.0) h = std::min(h, horizon);
-    return h;
+    return first_step_guess(x_, dxdt_, o, horizon);
   }
 
   // Back onto |q| = 1 before each step (the quaternion's rate scales with it).
@@ -195,7 +183,6 @@ class GeneralIntegrator {
   double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
 };
 
-constexpr std::size_t kStepsPerProgress = 64;
 
 // Calls sample(i, t, state) for each sample time, the state at t = 0 being x0 itself.
 template <class Sample>
@@ -208,10 +195,7 @@ void run_general(const Body& body, const RigidBodyState& x0, std::size_t count,
   for (std::size_t i = 0; i < count; ++i) {
     const double t = time(i);
     if (t > 0.0) {
-      for (std::size_t steps = 1; integrator.time() < t; ++steps) {
-        integrator.step();
-        if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(t, integrator.time()));
-      }
+      advance_to(integrator, t, options.progress);
       integrator.interpolate(t, x);
       sample(i, t, from_vector(x));
     } else {

@@ -395,20 +395,7 @@ class Integrator {
   }
 
   double initial_step(const NonlinearOptions& o, double horizon) const {
-    // Hairer's first guess, 1% of |x| / |x'| in the controller's error norm; the weights are
-    // kept away from 0 (a tiny atol on a zero component) so that the ratio stays finite.
-    double largest = 0.0;
-    for (double v : x_) largest = std::max(largest, std::abs(v));
-    double d0 = 0.0, d1 = 0.0;
-    for (std::size_t i = 0; i < x_.size(); ++i) {
-      const double sc = std::max(o.atol + o.rtol * std::abs(x_[i]), o.rtol * largest);
-      d0 += (x_[i] / sc) * (x_[i] / sc);
-      d1 += (dxdt_[i] / sc) * (dxdt_[i] / sc);
-    }
-    double h = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 : 0.01 * std::sqrt(d0 / d1);
-    if (!(h > 0.0 && std::isfinite(h))) h = 1e-6;
-    if (horizon > 0.0) h = std::min(h, horizon);
-    return h;
+    return first_step_guess(x_, dxdt_, o, horizon);
   }
 
   // Back onto the manifold before the next step: |p| = 1 (its rate scales with p), psi

@@ -161,6 +161,25 @@ inline AxisAngles axis_angles_of(const RigidBodyState& rb) {
                      rb.omega.y() * rb.attitude.col(0) - rb.omega.x() * rb.attitude.col(1));
 }
 
+// s, Hairer's first step: 1% of |x| / |x'| in the controller's error norm (x, x' any fixed-size
+// state), the weights kept away from 0 (a tiny atol on a zero component) so that the ratio
+// stays finite; 1e-6 s when either is ~0; at most the horizon.
+template <class State>
+double first_step_guess(const State& x, const State& dxdt, const NonlinearOptions& o, double horizon) {
+  double largest = 0.0;
+  for (double v : x) largest = std::max(largest, std::abs(v));
+  double d0 = 0.0, d1 = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double sc = std::max(o.atol + o.rtol * std::abs(x[i]), o.rtol * largest);
+    d0 += (x[i] / sc) * (x[i] / sc);
+    d1 += (dxdt[i] / sc) * (dxdt[i] / sc);
+  }
+  double h = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 : 0.01 * std::sqrt(d0 / d1);
+  if (!(h > 0.0 && std::isfinite(h))) h = 1e-6;
+  if (horizon > 0.0) h = std::min(h, horizon);
+  return h;
+}
+
 // Steps between two progress calls inside a sample interval (~20 us of work each).
 inline constexpr std::size_t kStepsPerProgress = 64;
 
