@@ -166,13 +166,13 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
           phi0: float = 0.0, theta_rate0: float = 0.0, phi_rate0: float = 0.0, nonlinear: bool = False,
           horizon: float = 100.0, max_tilt: float = 0.5, rtol: Optional[float] = None,
           atol: Optional[float] = None) -> StabilityMap:
-    """A stability map: each model's verdict over a grid of one or two parameters.
+    """A stability map: each model's verdict over a grid of one, two or three parameters.
 
     The computation of `heavytop sweep --vary KEY=START:STOP:COUNT [--vary ...]`, in C++ on every
     core with the GIL released.
 
         body        Body (SI units): the base the grid varies
-        vary        {KEY: values} with one or two keys, each a body key (A, B, C, mass, gravity,
+        vary        {KEY: values} with one to three keys, each a body key (A, B, C, mass, gravity,
                     length), "spin", or a ratio "B/A" or "C/A" (the numerator changes, the
                     denominator is held at the body's value); values a 1-D array (SI units).
                     The grid is the product of the arrays, the first key slowest (dict order).

@@ -51,7 +51,8 @@ std::vector<SweepAxis> point_axes(const std::vector<VariedKey>& keys, std::size_
 
 /// The varied keys and their values, checked as the command line checks --vary (key "vary").
 std::vector<VariedKey> varied_keys(const py::dict& vary) {
-  if (vary.size() < 1 || vary.size() > 2) throw InvalidInput("vary", "give one or two parameters");
+  if (vary.size() < 1 || vary.size() > kMaxSweepAxes)
+    throw InvalidInput("vary", fmt::format("give 1 to {} parameters", kMaxSweepAxes));
   std::vector<VariedKey> keys;
   for (const auto& [k, v] : vary) {
     if (!py::isinstance<py::str>(k))
