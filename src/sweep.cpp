@@ -127,8 +127,7 @@ void validate_sweep(const Body& base, const InitialState& base_state,
     const auto colon = why.find(':');
     throw InvalidInput(why.substr(0, colon), why.substr(colon == std::string::npos ? 0 : colon + 2));
   }
-  if (axes.empty() || axes.size() > kMaxSweepAxes)
-    throw InvalidInput("vary", fmt::format("give 1 to {} parameters", kMaxSweepAxes));
+  if (axes.size() > kMaxSweepAxes) throw InvalidInput("vary", fmt::format("give 1 to {} parameters", kMaxSweepAxes));
   for (std::size_t i = 0; i < axes.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (axes[i].key == axes[j].key) throw InvalidInput("vary", fmt::format("'{}' is varied twice", axes[i].key));

@@ -103,8 +103,8 @@ StabilityMap stability_map(const std::vector<SweepAxis>& axes, bool nonlinear, s
 /// "slice") if `key` is not an axis of the map or `value` is not finite.
 StabilityMap slice(const StabilityMap& map, std::string_view key, double value);
 
-/// Throws InvalidInput (key "vary", naming the grid point) unless 1 to kMaxSweepAxes distinct
-/// keys are varied, the grid has at most kMaxSweepPoints points and every grid point gives a valid body and state (checked at the
+/// Throws InvalidInput (key "vary", naming the grid point) unless at most kMaxSweepAxes distinct
+/// keys are varied (none: the base point alone), the grid has at most kMaxSweepPoints points and every grid point gives a valid body and state (checked at the
 /// grid's corners, which bound every rule), and, with options.nonlinear, the start is tilted
 /// (else the upright body never moves) by less than max_tilt.
 void validate_sweep(const Body& base, const InitialState& base_state,
