@@ -56,7 +56,7 @@ std::string flag_of(const std::string& field) {
       {"rtol", "--rtol"}, {"atol", "--atol"},       {"max_steps", "--max-steps"}, {"step", "--step"},
       {"order", "--order"}, {"horizon", "--horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
       {"t_end", "--t-end"}, {"times", "--t-end"}, {"tilt", "--tilt"}, {"model", "--model"},
-      {"method", "--method"}, {"integrator", "--integrator"},
+      {"method", "--method"}, {"integrator", "--integrator"}, {"slice", "--slice"}, {"map", "--map"},
   };
   auto it = flags.find(field);
   return it == flags.end() ? field : it->second;

@@ -175,15 +175,19 @@ StabilityMap stability_map(const std::vector<SweepAxis>& axes, bool nonlinear, s
   return map;
 }
 
+std::size_t nearest_index(const std::vector<double>& values, double value) {
+  return static_cast<std::size_t>(
+      std::min_element(values.begin(), values.end(),
+                       [&](double a, double b) { return std::abs(a - value) < std::abs(b - value); }) -
+      values.begin());
+}
+
 StabilityMap slice(const StabilityMap& map, std::string_view key, double value) {
   const auto held = std::find_if(map.axes.begin(), map.axes.end(), [&](const MapAxis& a) { return a.key == key; });
   if (held == map.axes.end()) throw InvalidInput("slice", fmt::format("'{}' is not a varied key of the map", key));
   if (!std::isfinite(value)) throw InvalidInput("slice", fmt::format("the value of '{}' must be finite", key));
   const std::vector<double>& values = held->values;
-  const std::size_t nearest = static_cast<std::size_t>(
-      std::min_element(values.begin(), values.end(),
-                       [&](double a, double b) { return std::abs(a - value) < std::abs(b - value); }) -
-      values.begin());
+  const std::size_t nearest = nearest_index(values, value);
   const std::size_t k = static_cast<std::size_t>(held - map.axes.begin());
   StabilityMap out{.axes = {}, .nonlinear = map.nonlinear, .verdicts = {}};
   for (std::size_t j = 0; j < map.axes.size(); ++j)

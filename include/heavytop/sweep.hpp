@@ -98,6 +98,9 @@ struct StabilityMap {
 /// The map of a sweep over `axes` with these verdicts (one per grid point, in grid order).
 StabilityMap stability_map(const std::vector<SweepAxis>& axes, bool nonlinear, std::vector<SweepVerdict> verdicts);
 
+/// The index of the value in `values` (not empty) nearest `value` (the first of equals).
+std::size_t nearest_index(const std::vector<double>& values, double value);
+
 /// The map with axis `key` held at its grid value nearest `value` (in the key's SI unit): one
 /// axis fewer (a three-parameter map's slice is a two-parameter map). Throws InvalidInput (key
 /// "slice") if `key` is not an axis of the map or `value` is not finite.
