@@ -105,10 +105,15 @@ py::dict map_columns(const StabilityMap& map) {
       if (map.nonlinear) verdict_columns.back()[i] = v.nonlinear.value_or(false);
     }
   });
-  // The certificates' names, as a NumPy array of strings (the CLI's column).
+  // The certificates' names, as a NumPy array of strings (the CLI's column): the names
+  // indexed by each point's code (one Python string per name, not per point).
   py::list names;
-  for (const auto& v : map.verdicts) names.append(py::str(std::string(name(v.lyapunov_certificate))));
-  out["lyapunov_certificate"] = py::module_::import("numpy").attr("array")(names, "dtype"_a = "U");
+  for (int c = 0; c <= static_cast<int>(LyapunovCertificate::None); ++c)
+    names.append(py::str(std::string(name(static_cast<LyapunovCertificate>(c)))));
+  py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(total));
+  std::uint8_t* code = codes.mutable_data();
+  for (std::size_t i = 0; i < total; ++i) code[i] = static_cast<std::uint8_t>(map.verdicts[i].lyapunov_certificate);
+  out["lyapunov_certificate"] = py::module_::import("numpy").attr("array")(names, "dtype"_a = "U")[codes];
   return out;
 }
 
