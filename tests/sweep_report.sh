@@ -180,4 +180,16 @@ check "report: says which" grep -q -- "--slice: 'mass' is not a varied key of th
 check "HDF5 to stdout is refused" test $? -eq 2
 check "HDF5 to stdout: says why" grep -q "hdf5 format needs a regular file" err.txt
 
+for bad in "sweep --vary A=1:2:2 --vary B=1:2:2 --vary C=1:2:2 --vary mass=1:2:2|--vary: give 1 to 3 parameters" \
+           "report --map missing.h5 --output r|--map: cannot read 'missing.h5'" \
+           "report --slice C/A=1 --output r|--slice: needs --map FILE" \
+           "report --map err.txt --output r|--map: not a sweep's CSV" \
+           "report --map map3.h5 --slice C/A=1,x --output r|--slice: 'x' is not a finite number" \
+           "sweep --vary spin=0:1:3 --format hdf5 --output /dev/null|--output: the hdf5 format needs a regular file"; do
+  IFS='|' read -r args message <<< "$bad"
+  # shellcheck disable=SC2086
+  "$H" $args > /dev/null 2> err2.txt
+  check "refused with status 2: $args" test $? -eq 2 -a ! -e r
+  check "says: $message" grep -qF -- "$message" err2.txt
+done
 finish
