@@ -21,8 +21,7 @@
 
 namespace {
 
-std::string g_heavytop = "heavytop";
-std::string g_examples = "examples";
+std::string g_heavytop;  // --heavytop=PATH
 
 void Sweep(benchmark::State& state, std::vector<std::string> map, double points) {
   const int ranks = static_cast<int>(state.range(0));
@@ -34,7 +33,7 @@ void Sweep(benchmark::State& state, std::vector<std::string> map, double points)
   args.push_back(g_heavytop);
   args.push_back("sweep");
   args.push_back("--config");
-  args.push_back(g_examples + "/asymmetric-plate.toml");
+  args.push_back(HEAVYTOP_EXAMPLES "/asymmetric-plate.toml");
   args.insert(args.end(), map.begin(), map.end());
   args.push_back("--output");
   args.push_back(output);
@@ -66,18 +65,4 @@ BENCHMARK_CAPTURE(Sweep, nonlinear_24x24,
 BENCHMARK_CAPTURE(Sweep, linear_400x400, {"--vary", "B/A=1:3:400", "--vary", "spin=0:3:400"}, 160000.0)
     ->Arg(1)->Arg(2)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
 
-int main(int argc, char** argv) {
-  std::vector<char*> rest;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--heavytop=", 11) == 0) g_heavytop = argv[i] + 11;
-    else rest.push_back(argv[i]);
-  }
-  const auto here = std::filesystem::canonical("/proc/self/exe").parent_path();
-  if (g_heavytop == "heavytop") g_heavytop = (here.parent_path() / "heavytop").string();
-  g_examples = HEAVYTOP_EXAMPLES;
-  int count = static_cast<int>(rest.size());
-  benchmark::Initialize(&count, rest.data());
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return heavytop::bench::run_benchmarks(argc, argv, g_heavytop); }

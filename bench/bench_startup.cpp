@@ -26,7 +26,7 @@ using heavytop::bench::Cost;
 using heavytop::bench::median_ms;
 using heavytop::bench::run_once;
 
-std::string g_heavytop = "heavytop";
+std::string g_heavytop;  // --heavytop=PATH
 std::string g_floor = "startup_floor";
 
 void Call(benchmark::State& state, const std::string* program, std::vector<std::string> args) {
@@ -56,18 +56,6 @@ BENCHMARK_CAPTURE(Call, derive, &g_heavytop, {"derive"})->UseManualTime()->Itera
 BENCHMARK_CAPTURE(Call, floor, &g_floor, {})->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
-  // --heavytop=PATH: the binary to time (default: heavytop beside this benchmark's build tree).
-  std::vector<char*> rest;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--heavytop=", 11) == 0) g_heavytop = argv[i] + 11;
-    else rest.push_back(argv[i]);
-  }
-  const auto here = std::filesystem::canonical("/proc/self/exe").parent_path();
-  if (g_heavytop == "heavytop") g_heavytop = (here.parent_path() / "heavytop").string();
-  g_floor = (here / "startup_floor").string();
-  int count = static_cast<int>(rest.size());
-  benchmark::Initialize(&count, rest.data());
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  g_floor = (std::filesystem::canonical("/proc/self/exe").parent_path() / "startup_floor").string();
+  return heavytop::bench::run_benchmarks(argc, argv, g_heavytop);
 }

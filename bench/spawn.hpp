@@ -8,8 +8,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -51,6 +55,23 @@ inline double median_ms(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n == 0 ? 0.0 : 1e3 * (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+/// main() of a benchmark of the built command: takes --heavytop=PATH (default: heavytop at
+/// the top of this benchmark's build tree) into `heavytop`, then runs Google Benchmark.
+inline int run_benchmarks(int argc, char** argv, std::string& heavytop) {
+  std::vector<char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--heavytop=", 11) == 0) heavytop = argv[i] + 11;
+    else rest.push_back(argv[i]);
+  }
+  if (heavytop.empty())
+    heavytop = (std::filesystem::canonical("/proc/self/exe").parent_path().parent_path() / "heavytop").string();
+  int count = static_cast<int>(rest.size());
+  benchmark::Initialize(&count, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
 }
 
 }  // namespace heavytop::bench
