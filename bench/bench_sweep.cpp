@@ -1,9 +1,11 @@
 // The nonlinear column of a 400 x 400 stability map (horizon 50 s, max tilt 0.5 rad, the
 // sweep's default tolerance rtol = atol = 1e-12), three ways side by side in one run:
-//   dopri5    max_tilt() point by point (`heavytop sweep --integrator dopri5`, the old path)
-//   taylor1   taylor_tilt_extremes() point by point (the Taylor method unbatched)
-//   batched   batch_tilt_extremes() on every point at once (`--integrator auto`), with the
-//             widest instruction set here, and with 2 (SSE2) and 4 (AVX2) lanes
+//   dopri5    max_tilt() point by point (way 0; `heavytop sweep --integrator dopri5`, the old path)
+//   taylor1   taylor_tilt_extremes() point by point (way 1; the Taylor method unbatched)
+//   batched   batch_tilt_extremes() on every point at once, with the widest instruction set
+//             here (way 2), and with 2 (SSE2, way 3) and 4 (AVX2, way 4) lanes
+//   verdicts  batch_tilt_verdicts() (way 5): the same without the tilt's extrema, the call of
+//             `heavytop sweep --integrator auto`
 // on two maps:
 //   plate     examples/asymmetric-plate.toml, B/A = 1.05:2.95:400 x spin = 0.5:4:400 rad/s
 //             (every point asymmetric: the plain variables)
@@ -68,7 +70,7 @@ Subset subset(const Map& m) {
   return s;
 }
 
-enum Way { Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2 };
+enum Way { Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2, Verdicts };
 
 void BM_NonlinearMap(benchmark::State& state) {
   const Map m = map(static_cast<int>(state.range(0)));
@@ -81,6 +83,7 @@ void BM_NonlinearMap(benchmark::State& state) {
     return;
   }
   std::vector<TiltExtremes> out(s.bodies.size());
+  std::vector<TiltVerdict> verdicts(s.bodies.size());
   std::size_t stable = 0;
   for (auto _ : state) {
     stable = 0;
@@ -90,6 +93,9 @@ void BM_NonlinearMap(benchmark::State& state) {
     } else if (way == Taylor1) {
       for (std::size_t i = 0; i < s.bodies.size(); ++i)
         stable += !taylor_tilt_extremes(s.bodies[i], s.starts[i], kHorizon, kMaxTilt, tol).exceeded;
+    } else if (way == Verdicts) {
+      batch_tilt_verdicts(s.bodies, s.starts, kHorizon, kMaxTilt, tol, verdicts, isa);
+      for (const auto& v : verdicts) stable += !v.exceeded;
     } else {
       batch_tilt_extremes(s.bodies, s.starts, kHorizon, kMaxTilt, tol, out, isa);
       for (const auto& e : out) stable += !e.exceeded;
@@ -105,7 +111,7 @@ void BM_NonlinearMap(benchmark::State& state) {
 void Args(benchmark::internal::Benchmark* b) {
   b->ArgNames({"map", "way"})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
   for (int map : {0, 1})
-    for (int way : {Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2}) b->Args({map, way});
+    for (int way : {Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2, Verdicts}) b->Args({map, way});
 }
 BENCHMARK(BM_NonlinearMap)->Apply(Args);
 

@@ -90,15 +90,14 @@ bool batchable(const Body& body) noexcept { return body.damping.conservative() &
 
 // ---- The batch ----------------------------------------------------------------------------------
 
-void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out) {
-  batch_tilt_extremes(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
-}
+namespace {
 
-void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out,
-                         BatchIsa isa) {
-  if (bodies.size() != initials.size() || bodies.size() != out.size())
+// Both entry points: validation as taylor_tilt_extremes() does it, the two groups of
+// variables, the kernel of `isa`; results into `results` (grid order).
+void scan(std::span<const Body> bodies, std::span<const InitialState> initials, std::size_t outputs, double horizon,
+          double stop_above, const NonlinearOptions& options, BatchIsa isa, bool extremes,
+          std::vector<detail::BatchResult>& results) {
+  if (bodies.size() != initials.size() || bodies.size() != outputs)
     throw InvalidInput("bodies", "bodies, initial states and results must be as many");
   if (!batch_isa_supported(isa))
     throw InvalidInput("isa", fmt::format("this processor does not run {}", name(isa)));
@@ -128,19 +127,46 @@ void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialSt
     (b.A == b.B ? symmetric : plain).push_back(point);
   }
   const detail::BatchSettings settings{taylor_order(options), options.rtol, options.atol, horizon, stop_above,
-                                       options.max_steps};
+                                       options.max_steps, extremes};
   auto kernel = isa == BatchIsa::Avx512 ? detail::batch_scan_avx512
                 : isa == BatchIsa::Avx2 ? detail::batch_scan_avx2
                                         : detail::batch_scan_sse2;
-  std::vector<detail::BatchResult> results(bodies.size());
+  results.resize(bodies.size());
   if (!symmetric.empty()) kernel(true, symmetric.data(), symmetric.size(), settings, results.data());
   if (!plain.empty()) kernel(false, plain.data(), plain.size(), settings, results.data());
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
+}
+
+}  // namespace
+
+void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out) {
+  batch_tilt_extremes(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
+}
+
+void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out,
+                         BatchIsa isa) {
+  std::vector<detail::BatchResult> results;
+  scan(bodies, initials, out.size(), horizon, stop_above, options, isa, true, results);
+  for (std::size_t i = 0; i < out.size(); ++i) {
     const detail::BatchResult& r = results[i];
     out[i] = TiltExtremes{};  // spin_at_end 0, as taylor_tilt_extremes leaves it
     out[i].min_tilt = r.min_tilt, out[i].t_min = r.t_min, out[i].max_tilt = r.max_tilt, out[i].t_max = r.t_max;
     out[i].t_end = r.t_end, out[i].exceeded = r.exceeded;
   }
+}
+
+void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltVerdict> out) {
+  batch_tilt_verdicts(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
+}
+
+void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltVerdict> out,
+                         BatchIsa isa) {
+  std::vector<detail::BatchResult> results;
+  scan(bodies, initials, out.size(), horizon, stop_above, options, isa, false, results);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = TiltVerdict{results[i].exceeded, results[i].t_end};
 }
 
 }  // namespace heavytop

@@ -58,12 +58,12 @@ struct SweepBatch {
   std::vector<Body> bodies;
   std::vector<InitialState> states;
   std::vector<std::size_t> slots;  // their places in the block's output
-  std::vector<TiltExtremes> results;
+  std::vector<TiltVerdict> results;
 
   void clear() { bodies.clear(), states.clear(), slots.clear(); }
   void judge(const SweepOptions& o, std::vector<SweepVerdict>& out) {
     results.resize(bodies.size());
-    batch_tilt_extremes(bodies, states, o.horizon, o.max_tilt, o.integrator, results);
+    batch_tilt_verdicts(bodies, states, o.horizon, o.max_tilt, o.integrator, results);
     for (std::size_t k = 0; k < slots.size(); ++k) out[slots[k]].nonlinear = !results[k].exceeded;
   }
 };

@@ -78,6 +78,16 @@ std::vector<TiltExtremes> run(const std::vector<Problem>& problems, const std::v
   return out;
 }
 
+std::vector<TiltVerdict> run_verdicts(const std::vector<Problem>& problems, const std::vector<std::size_t>& which,
+                                      double horizon, double stop, const NonlinearOptions& o, BatchIsa isa) {
+  std::vector<Body> bodies;
+  std::vector<InitialState> starts;
+  for (std::size_t i : which) bodies.push_back(problems[i].body), starts.push_back(problems[i].start);
+  std::vector<TiltVerdict> out(which.size());
+  batch_tilt_verdicts(bodies, starts, horizon, stop, o, out, isa);
+  return out;
+}
+
 std::vector<BatchIsa> supported_isas() {
   std::vector<BatchIsa> isas;
   for (BatchIsa isa : {BatchIsa::Sse2, BatchIsa::Avx2, BatchIsa::Avx512})
@@ -97,7 +107,8 @@ void expect_same_bits(const TiltExtremes& a, const TiltExtremes& b, const std::s
 
 // A point alone, in batches of every size from 2 to 13 (partly filled lanes, lanes refilled
 // after early stops), in reversed and shuffled order, and on every instruction set this
-// processor has (2, 4, 8 lanes): the same bits each time.
+// processor has (2, 4, 8 lanes): the same bits each time, and batch_tilt_verdicts() (the
+// sweep's call) the same crossing.
 TEST(Batch, APointsResultDoesNotDependOnItsBatch) {
   const std::vector<Problem> problems = random_problems(40, 1);
   const NonlinearOptions o = tolerance(1e-10);
@@ -125,10 +136,16 @@ TEST(Batch, APointsResultDoesNotDependOnItsBatch) {
   for (BatchIsa isa : supported_isas())
     for (const auto& which : batches) {
       const std::vector<TiltExtremes> got = run(problems, which, horizon, stop, o, isa);
-      for (std::size_t k = 0; k < which.size(); ++k)
-        expect_same_bits(got[k], alone[which[k]],
-                         std::string(name(isa)) + " batch of " + std::to_string(which.size()) + ", point " +
-                             std::to_string(which[k]));
+      const std::vector<TiltVerdict> verdicts = run_verdicts(problems, which, horizon, stop, o, isa);
+      for (std::size_t k = 0; k < which.size(); ++k) {
+        const std::string where = std::string(name(isa)) + " batch of " + std::to_string(which.size()) +
+                                  ", point " + std::to_string(which[k]);
+        expect_same_bits(got[k], alone[which[k]], where);
+        // The verdict alone (the sweep's call): the same crossing, bit for bit.
+        EXPECT_EQ(verdicts[k].exceeded, alone[which[k]].exceeded) << where;
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(verdicts[k].t_end), std::bit_cast<std::uint64_t>(alone[which[k]].t_end))
+            << where;
+      }
     }
 }
 

@@ -68,4 +68,22 @@ void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialSt
                          double horizon, double stop_above, const NonlinearOptions& options,
                          std::span<TiltExtremes> out, BatchIsa isa);
 
+/// The sweep's question alone: did the tilt pass stop_above, and when.
+struct TiltVerdict {
+  bool exceeded = false;  ///< the tilt passed stop_above within the horizon
+  double t_end = 0.0;     ///< s, the crossing, or the horizon
+};
+
+/// batch_tilt_extremes()'s `exceeded` and `t_end` (the same bits, and so
+/// taylor_tilt_extremes()'s) without the tilt's extrema, which a verdict does not need: no
+/// series of d(k_zeta)/dt, no root-finding of the extrema, no tilt at each step end (a third
+/// less work; the crossing is found by the same test on the same series). Same units, keys and
+/// failures as batch_tilt_extremes().
+void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials,
+                         double horizon, double stop_above, const NonlinearOptions& options,
+                         std::span<TiltVerdict> out);
+void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials,
+                         double horizon, double stop_above, const NonlinearOptions& options,
+                         std::span<TiltVerdict> out, BatchIsa isa);
+
 }  // namespace heavytop

@@ -38,6 +38,7 @@ struct BatchSettings {
   double horizon;              // s
   double stop_above;           // rad
   std::size_t max_steps;
+  bool extremes;               // false: only `exceeded` and `t_end` are wanted (batch_tilt_verdicts)
 };
 
 // A root of the polynomial s[0..p] on [a, b] (s(a), s(b) of opposite signs): taylor.cpp's

@@ -122,7 +122,9 @@ inline double tilt_of(double qw, double qx, double qy, double qz) {
   return __builtin_atan2(__builtin_hypot(g1, g2), qw * qw - qx * qx - qy * qy + qz * qz);
 }
 
-template <bool Symmetric>
+// Extremes false: the verdict only (exceeded and t_end, the same bits), without the tilt's
+// extrema: no series of d(k_zeta)/dt, no roots but the crossing's, no tilt at each step end.
+template <bool Symmetric, bool Extremes>
 void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, BatchResult* out) {
   const int p = s.order;
   const double horizon = s.horizon, stop_above = s.stop_above;
@@ -239,40 +241,44 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
 
     // ---- scan_tilt(): the series of d(k_zeta)/dt and of k_zeta - cos(stop_above) ----
     const V* q0 = &w.c[0][0];
-    const V *q1 = q0 + 1, *q2 = q0 + 2, *q3 = q0 + 3, *u1 = q0 + 4, *u2 = q0 + 5;
-    w.g1[p] = 2.0 * (cauchy(q1, q3, 7, p) - cauchy(q0, q2, 7, p));
-    w.g2[p] = 2.0 * (cauchy(q2, q3, 7, p) + cauchy(q0, q1, 7, p));
-    for (int n = 0; n <= p; ++n) {
-      V r1 = {}, r2 = {};
-      for (int j = 0; j <= n; ++j) r1 += w.g1[j] * u2[(n - j) * 7];
-      for (int j = 0; j <= n; ++j) r2 += w.g2[j] * u1[(n - j) * 7];
-      w.rate[n] = r1 - r2;
-      w.kz[n] = cauchy(q0, q0, 7, n) - cauchy(q1, q1, 7, n) - cauchy(q2, q2, 7, n) + cauchy(q3, q3, 7, n);
+    const V *q1 = q0 + 1, *q2 = q0 + 2, *q3 = q0 + 3;
+    if constexpr (Extremes) {
+      const V *u1 = q0 + 4, *u2 = q0 + 5;
+      w.g1[p] = 2.0 * (cauchy(q1, q3, 7, p) - cauchy(q0, q2, 7, p));
+      w.g2[p] = 2.0 * (cauchy(q2, q3, 7, p) + cauchy(q0, q1, 7, p));
+      for (int n = 0; n <= p; ++n) {
+        V r1 = {}, r2 = {};
+        for (int j = 0; j <= n; ++j) r1 += w.g1[j] * u2[(n - j) * 7];
+        for (int j = 0; j <= n; ++j) r2 += w.g2[j] * u1[(n - j) * 7];
+        w.rate[n] = r1 - r2;
+      }
     }
+    for (int n = 0; n <= p; ++n)
+      w.kz[n] = cauchy(q0, q0, 7, n) - cauchy(q1, q1, 7, n) - cauchy(q2, q2, 7, n) + cauchy(q3, q3, 7, n);
     w.kz[0] -= cos_stop;
 
     V h = {};
     for (int l = 0; l < W; ++l) h[l] = active[l] ? t[l] - t_old[l] : 0.0;
     V at[kPieces + 1], rate_at[kPieces + 1], kz_at[kPieces + 1];
     at[0] = V{};
-    rate_at[0] = horner(w.rate, 1, p, V{});
+    if constexpr (Extremes) rate_at[0] = horner(w.rate, 1, p, V{});
     kz_at[0] = horner(w.kz, 1, p, V{});
     for (int k = 1; k <= kPieces; ++k) {
       at[k] = h * static_cast<double>(k) / static_cast<double>(kPieces);
-      rate_at[k] = horner(w.rate, 1, p, at[k]);
+      if constexpr (Extremes) rate_at[k] = horner(w.rate, 1, p, at[k]);
       kz_at[k] = horner(w.kz, 1, p, at[k]);
     }
 
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;
       const double t0 = t_old[l], hl = h[l];
-      double a = 0.0, ra = rate_at[0][l], ka = kz_at[0][l];
+      double a = 0.0, ra = Extremes ? rate_at[0][l] : 0.0, ka = kz_at[0][l];
       bool crossed = false;
       for (int k = 1; k <= kPieces && !crossed; ++k) {
-        const double b = at[k][l], rb = rate_at[k][l], kb = kz_at[k][l];
+        const double b = at[k][l], rb = Extremes ? rate_at[k][l] : 0.0, kb = kz_at[k][l];
         double crossing = -1.0;
         if (threshold && ka >= 0.0 && kb < 0.0) crossing = root(w.kz, l, a, b, ka, kb, hl);
-        if ((ra < 0.0 && rb > 0.0) || (ra > 0.0 && rb < 0.0)) {
+        if (Extremes && ((ra < 0.0 && rb > 0.0) || (ra > 0.0 && rb < 0.0))) {
           const double extremum = root(w.rate, l, a, b, ra, rb, hl);
           if (crossing < 0.0 || extremum < crossing) note(l, t0 + extremum, tilt_at(l, t0 + extremum));
         }
@@ -288,7 +294,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
         finish(l);
         continue;
       }
-      note(l, t[l], tilt_at(l, t[l]));
+      if constexpr (Extremes) note(l, t[l], tilt_at(l, t[l]));
       if (!(t[l] < horizon)) {
         e[l].t_end = horizon;
         finish(l);
@@ -302,6 +308,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
 
 void heavytop::detail::HEAVYTOP_BATCH_ENTRY(bool symmetric, const BatchPoint* points, std::size_t count,
                                             const BatchSettings& s, BatchResult* out) {
-  if (symmetric) HEAVYTOP_BATCH_NS::scan<true>(points, count, s, out);
-  else HEAVYTOP_BATCH_NS::scan<false>(points, count, s, out);
+  using namespace HEAVYTOP_BATCH_NS;
+  if (s.extremes) symmetric ? scan<true, true>(points, count, s, out) : scan<false, true>(points, count, s, out);
+  else symmetric ? scan<true, false>(points, count, s, out) : scan<false, false>(points, count, s, out);
 }
