@@ -20,6 +20,8 @@
 #include "heavytop/stability.hpp"
 #include "heavytop/units.hpp"
 
+#include "detail/integration.hpp"
+
 namespace heavytop {
 namespace {
 
@@ -202,6 +204,9 @@ void validate_sweep(const Body& base, const InitialState& base_state,
       throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. theta0 = 1e-3): the upright body never moves");
     if (start_tilt >= options.max_tilt)
       throw InvalidInput("max_tilt", "must exceed the initial tilt");
+    // Taylor and DOP853 hold no torques of SPEC section 6 (the grid varies none of them).
+    if (options.nonlinear_integrator == Integrator::Taylor) detail::refuse_damping(base, "taylor");
+    if (options.nonlinear_integrator == Integrator::Dop853) detail::refuse_damping(base, "dop853");
   }
 }
 
