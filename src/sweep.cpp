@@ -8,6 +8,7 @@
 
 #include "heavytop/frames.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <exception>
@@ -221,8 +222,10 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
   // its own slot, so the result does not depend on the threads. Threads end with the call
   // (no pool left spinning while the caller writes the rows).
   std::atomic<std::size_t> next{0};
-  // A nonlinear point costs far more than the rest; blocks of 64 keep the batch's lanes full.
-  const std::size_t kBlock = options.nonlinear ? 64 : 16;
+  const std::size_t cores = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  // A nonlinear point costs far more than the rest and is batched: blocks of up to 64 keep the
+  // lanes full, but every thread gets about 8 blocks (a call may be as small as 8 points).
+  const std::size_t kBlock = !options.nonlinear ? 16 : cores == 1 ? 64 : std::clamp<std::size_t>(out.size() / (8 * cores), 8, 64);
   auto work = [&] {
     SweepBatch batch;  // this block's nonlinear points that the batched Taylor integrator takes
     for (std::size_t first; (first = next.fetch_add(kBlock)) < out.size();) {
@@ -254,9 +257,7 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
       }
     }
   };
-  const std::size_t threads = std::min<std::size_t>(
-      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency()),
-      (out.size() + kBlock - 1) / kBlock);
+  const std::size_t threads = std::min<std::size_t>(cores, (out.size() + kBlock - 1) / kBlock);
   {
     std::vector<std::jthread> pool;
     for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
