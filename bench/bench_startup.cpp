@@ -13,62 +13,21 @@
 
 #include <benchmark/benchmark.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "spawn.hpp"
 
 namespace {
 
+using heavytop::bench::Cost;
+using heavytop::bench::median_ms;
+using heavytop::bench::run_once;
+
 std::string g_heavytop = "heavytop";
 std::string g_floor = "startup_floor";
-
-struct Cost {
-  double cpu = 0.0, wall = 0.0;  // s
-};
-
-/// Runs `args` once; false if it could not be run or did not exit with 0.
-bool run_once(const std::string& program, const std::vector<std::string>& args, Cost& cost) {
-  std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(program.c_str()));
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  if (posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
-    posix_spawn_file_actions_destroy(&actions);
-    return false;
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  cost.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  cost.cpu = seconds(usage.ru_utime) + seconds(usage.ru_stime);
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
-double median_ms(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : 1e3 * (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
 
 void Call(benchmark::State& state, const std::string* program, std::vector<std::string> args) {
   std::vector<double> cpu, wall;

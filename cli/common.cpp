@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <new>
@@ -55,7 +56,7 @@ std::string flag_of(const std::string& field) {
       {"rtol", "--rtol"}, {"atol", "--atol"},       {"max_steps", "--max-steps"}, {"step", "--step"},
       {"order", "--order"}, {"horizon", "--horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
       {"t_end", "--t-end"}, {"times", "--t-end"}, {"tilt", "--tilt"}, {"model", "--model"},
-      {"method", "--method"}, {"integrator", "--integrator"},
+      {"method", "--method"}, {"integrator", "--integrator"}, {"slice", "--slice"}, {"map", "--map"},
   };
   auto it = flags.find(field);
   return it == flags.end() ? field : it->second;
@@ -211,13 +212,21 @@ int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
   }
 }
 
-int run_derive(int argc, char** argv, bool replace_process) {
+namespace {
+
+/// The path of the program `name` in this one's folder.
+std::string program_beside(const char* argv0, const char* name) {
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  const std::string program = ((ec ? fs::path(argv[0]) : self).parent_path() / "heavytop-derive").string();
+  return ((ec ? fs::path(argv0) : self).parent_path() / name).string();
+}
+
+int run_beside(const char* program_name, const char* missing, int argc, char** argv, bool replace_process) {
+  const std::string program = program_beside(argv[0], program_name);
+  const std::string_view command = argc > 1 ? argv[1] : "";
   if (::access(program.c_str(), X_OK) != 0) {
-    std::cerr << "heavytop: error: derive: the program heavytop-derive is not beside heavytop (built without "
-                 "HEAVYTOP_BUILD_SYMBOLIC?)\n";
+    std::cerr << fmt::format("heavytop: error: {}: the program {} is not beside heavytop ({})\n", command,
+                             program_name, missing);
     return 1;
   }
   std::vector<char*> args(argv, argv + argc);
@@ -233,8 +242,33 @@ int run_derive(int argc, char** argv, bool replace_process) {
       return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
     }
   }
-  std::cerr << fmt::format("heavytop: error: derive: cannot run '{}': {}\n", program, std::strerror(errno));
+  std::cerr << fmt::format("heavytop: error: {}: cannot run '{}': {}\n", command, program, std::strerror(errno));
   return 1;
+}
+
+}  // namespace
+
+int run_derive(int argc, char** argv, bool replace_process) {
+  return run_beside("heavytop-derive", "built without HEAVYTOP_BUILD_SYMBOLIC?", argc, argv, replace_process);
+}
+
+std::size_t mpi_launch_size() {
+  // OpenMPI's mpirun, then the PMI variables of Slurm's srun and of MPICH's launchers.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "PMI_SIZE", "SLURM_NTASKS_MPI"})
+    if (const char* value = std::getenv(name)) return std::max<std::size_t>(1, std::strtoull(value, nullptr, 10));
+  return std::getenv("PMIX_RANK") ? 1 : 0;
+}
+
+int run_sweep_under_mpi(int argc, char** argv, bool replace_process) {
+  const bool built = ::access(program_beside(argv[0], "heavytop-mpi").c_str(), X_OK) == 0;
+  if (!built && mpi_launch_size() > 1) {
+    std::cerr << fmt::format("heavytop: error: sweep: started as one of {} MPI ranks, but this heavytop was built "
+                             "without MPI (Debian's libopenmpi-dev): run it without mpirun, or rebuild\n",
+                             mpi_launch_size());
+    return 2;
+  }
+  if (!built) return -1;  // one rank: the serial sweep is the same
+  return run_beside("heavytop-mpi", "built without MPI", argc, argv, replace_process);
 }
 
 }  // namespace heavytop::cli

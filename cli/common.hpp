@@ -39,6 +39,16 @@ int run_reporting_errors(CLI::App& app, const std::function<int()>& body);
 /// status it returns). Only that program links the computer algebra.
 int run_derive(int argc, char** argv, bool replace_process);
 
+/// The number of ranks of the MPI job this process was started in by mpirun or srun (from
+/// the launchers' environment variables), or 0 if it was not started by an MPI launcher.
+std::size_t mpi_launch_size();
+
+/// `heavytop sweep ...` started by an MPI launcher: runs the program heavytop-mpi beside this
+/// one with the same arguments (as run_derive does), which shares the grid among the ranks.
+/// Returns -1 if there is no heavytop-mpi and the job has one rank (the serial sweep is then
+/// the same), 2 (after saying why) if there is none and the job has more.
+int run_sweep_under_mpi(int argc, char** argv, bool replace_process);
+
 /// The body and motion as given on the command line and in --config, merged.
 class Inputs {
  public:

@@ -1,11 +1,15 @@
 // heavytop report: the report folder (heavytop_report) for the body and motion given.
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "heavytop/io/map_file.hpp"
 #include "heavytop/report/report.hpp"
+
+#include <fmt/format.h>
 
 namespace heavytop::cli {
 
@@ -14,12 +18,42 @@ Action add_report_command(CLI::App& app) {
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"});
   auto t_end = std::make_shared<double>(0.0);
   auto* t_end_option = cmd->add_option("--t-end", *t_end, "s, horizon of the motion (default: a few precession periods)");
-  return [inputs, t_end, t_end_option] {
+  auto map_file = std::make_shared<std::string>();
+  auto slices = std::make_shared<std::string>();
+  cmd->add_option("--map", *map_file, "a sweep's output (CSV or HDF5) to draw: two keys whole, three as slices");
+  cmd->add_option("--slice", *slices,
+                  "KEY=V1[,V2...]: the key a three-key map's heat maps hold, at its grid values nearest these "
+                  "(default: the last key at its first, middle and last values)");
+  return [inputs, t_end, t_end_option, map_file, slices] {
     inputs->resolve();
     if (inputs->output().empty() || inputs->output() == "-") throw InvalidInput("--output", "give the report's folder, e.g. --output report");
     if (t_end_option->count() && !(std::isfinite(*t_end) && *t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
+    std::optional<report::ReportMap> map;
+    if (!map_file->empty()) {
+      map = report::ReportMap{.file = *map_file, .map = io::read_map(*map_file, "--map"), .held = {}, .values = {}};
+      if (!slices->empty()) {
+        const auto eq = slices->find('=');
+        if (eq == std::string::npos || eq == 0) throw InvalidInput("--slice", "must be KEY=V1[,V2...]");
+        map->held = slices->substr(0, eq);
+        std::string_view list = std::string_view(*slices).substr(eq + 1);
+        for (;;) {
+          const auto comma = std::min(list.find(','), list.size());
+          double v = 0.0;
+          const std::string_view cell = list.substr(0, comma);
+          const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+          if (error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v))
+            throw InvalidInput("--slice", fmt::format("'{}' is not a finite number (KEY=V1[,V2...])", cell));
+          map->values.push_back(v);
+          if (comma == list.size()) break;
+          list.remove_prefix(comma + 1);
+        }
+      }
+      map->heat_maps();  // bad slices are refused before anything is drawn
+    } else if (!slices->empty()) {
+      throw InvalidInput("--slice", "needs --map FILE");
+    }
     report::write_report(inputs->output(), inputs->body(), inputs->state(),
-                 t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt);
+                         t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt, map);
     std::cout << "heavytop: wrote " << (std::filesystem::path(inputs->output()) / "report.html").string() << "\n";
   };
 }

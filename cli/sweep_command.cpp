@@ -1,14 +1,15 @@
-// heavytop sweep: a stability map over one or two parameters, resumable when written to a file.
+// heavytop sweep: a stability map over one to three parameters, resumable when written to a file.
 //
 // With --output FILE the rows go to FILE.partial as they are computed (in grid order, whole
-// lines), beside FILE.partial.args, which records the arguments. Run again with the same
-// arguments after an interruption and it goes on from the last complete row; at the end
-// FILE.partial is renamed to FILE. Nothing is lost or written twice.
+// records), beside FILE.partial.args, which records the arguments. Run again with the same
+// arguments after an interruption and it goes on from the last complete record; at the end
+// FILE.partial becomes FILE (renamed for CSV; for HDF5 the columnar file is written from it
+// through a temporary name). Nothing is lost or written twice. Under MPI (heavytop-mpi) the
+// ranks compute the blocks and the first rank alone does all of this.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <functional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -16,7 +17,9 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/io/formats.hpp"
+#include "heavytop/io/map_file.hpp"
 #include "heavytop/sweep.hpp"
+#include "sweep_distribution.hpp"
 
 namespace heavytop::cli {
 namespace {
@@ -38,6 +41,7 @@ std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, co
   if (o.nonlinear)
     f += fmt::format(" nonlinear {} {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol,
                      name(o.nonlinear_integrator));
+  if (in.format() != "csv") f += " format " + in.format();
   return f + "\n";
 }
 
@@ -48,15 +52,41 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
+/// How a sweep's records look in FILE.partial: CSV rows (the output itself), or the packed
+/// verdicts from which the HDF5 file is written at the end (fixed-size records, so a torn
+/// one is seen by the size alone).
+struct Journal {
+  std::string head;
+  bool packed = false;
+
+  std::string encode(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& v) const {
+    if (!packed) return io::sweep_csv_rows(axes, begin, v);
+    std::string bytes;
+    io::pack_verdicts(v, bytes);
+    return bytes;
+  }
+  /// The number of whole records in `content` (a partial file that starts with head), which
+  /// is cut after the last of them.
+  std::size_t whole_records(std::string& content) const {
+    if (packed) {
+      const std::size_t n = (content.size() - head.size()) / io::kPackedVerdictSize;
+      content.resize(head.size() + n * io::kPackedVerdictSize);
+      return n;
+    }
+    content.erase(content.rfind('\n') + 1);  // drop a torn line (head ends in '\n')
+    return static_cast<std::size_t>(std::count(content.begin() + head.size(), content.end(), '\n'));
+  }
+};
+
 }  // namespace
 
 Action add_sweep_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("sweep", "A stability map: each model's verdict over a grid of one or two parameters");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv"});
+  auto* cmd = app.add_subcommand("sweep", "A stability map: each model's verdict over a grid of one to three parameters");
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv", "hdf5"});
   auto s = std::make_shared<SweepSettings>();
-  cmd->add_option("--vary", s->vary, "KEY=START:STOP:COUNT, KEY a body key, spin, spin_rpm (rpm; the CSV keeps spin in rad/s), B/A or C/A (once or twice)")
+  cmd->add_option("--vary", s->vary, "KEY=START:STOP:COUNT, KEY a body key, spin, spin_rpm (rpm; the CSV keeps spin in rad/s), B/A or C/A (one to three times)")
       ->required()
-      ->expected(1, 2)
+      ->expected(1, static_cast<int>(kMaxSweepAxes))
       ->take_all();
   cmd->add_option("--model", s->model, "nonlinear: add the column `nonlinear`, the verdict of a simulation")
       ->check(CLI::IsMember({"nonlinear"}));
@@ -73,65 +103,89 @@ Action add_sweep_command(CLI::App& app) {
       ->default_str(fmt::format("{}", s->options.integrator.max_steps));
   return [inputs, s] {
     inputs->resolve();
-    if (s->vary.size() > 2) throw InvalidInput("--vary", "give one or two parameters");
     std::vector<SweepAxis> axes;
     for (const auto& v : s->vary) axes.push_back(parse_sweep_axis(v));
     s->options.nonlinear = s->model == "nonlinear";
     s->options.nonlinear_integrator = *integrator_from_name(s->integrator);
     validate_sweep(inputs->body(), inputs->state(), axes, s->options);
+    const bool hdf5 = inputs->format() == "hdf5";
+    if (hdf5 && !io::hdf5_available())
+      throw InvalidInput("--format", "hdf5: this heavytop was built without HDF5 (Debian's libhdf5-dev); use csv");
 
+    const SweepDistribution& distribution = sweep_distribution();
+    s->options.threads = distribution.threads();
     const std::size_t total = grid_size(axes);
-    const std::string path = io::resolved(inputs->output());
-    const std::string partial = path + ".partial", args_file = path + ".partial.args";
-    const std::string args = fingerprint(*inputs, axes, s->options);
-    const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);
-
-    // Rows in chunks of grid order: each computed in parallel, then appended whole.
-    const std::size_t chunk = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 8 : 256, 20000);
-    ProgressBar progress("sweep", static_cast<double>(total));
-    auto compute = [&](std::size_t done, const std::function<void(const std::string&)>& write) {
-      for (; done < total; progress.update(static_cast<double>(done))) {
-        const std::size_t end = std::min(total, done + chunk);
-        write(io::sweep_csv_rows(axes, done, sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, done, end)));
-        done = end;
-      }
+    // Blocks of grid order: each computed in parallel, then appended whole.
+    const std::size_t block = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 8 : 256, 20000);
+    const ComputeBlock compute = [&](std::size_t begin, std::size_t end) {
+      return sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, begin, end);
     };
+    if (!distribution.writes()) {  // an MPI rank that only computes
+      distribution.run(0, total, block, compute, {});
+      return;
+    }
+
+    const std::string path = io::resolved(inputs->output());
+    const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);
+    ProgressBar progress("sweep", static_cast<double>(total));
     if (!io::is_regular_target(path)) {  // stdout, a device or a pipe: written directly
+      if (hdf5) throw InvalidInput("--output", "the hdf5 format needs a regular file (HDF5 seeks): give --output FILE.h5");
       io::OutputStream out(path, "--output");
       out.write(head);
-      compute(0, [&](const std::string& rows) { out.write(rows); });
+      distribution.run(0, total, block, compute, [&](std::size_t begin, std::vector<SweepVerdict> v) {
+        out.write(io::sweep_csv_rows(axes, begin, v));
+        progress.update(static_cast<double>(begin + v.size()));
+      });
       out.commit();
       return;
     }
 
     const io::OutputLock lock(path, "--output");  // one sweep per output at a time: a second is refused
     namespace fs = std::filesystem;
+    const std::string partial = path + ".partial", args_file = path + ".partial.args";
+    const std::string args = fingerprint(*inputs, axes, s->options);
+    const Journal journal{.head = hdf5 ? "heavytop-sweep-journal-v1 packed verdicts\n" : head, .packed = hdf5};
     std::size_t done = 0;
     if (fs::exists(partial) && fs::exists(args_file) && read_file(args_file) == args) {
       std::string content = read_file(partial);
-      content.erase(content.rfind('\n') == std::string::npos ? 0 : content.rfind('\n') + 1);  // drop a torn line
-      if (content.starts_with(head)) {
-        done = static_cast<std::size_t>(std::count(content.begin(), content.end(), '\n')) - 1;
+      if (content.starts_with(journal.head)) {
+        done = std::min(total, journal.whole_records(content));
         fs::resize_file(partial, content.size());
       }
     }
     if (done == 0) {
       write_output(args_file, args);
-      write_output(partial, head);
+      write_output(partial, journal.head);
     } else {
       std::cerr << fmt::format("heavytop: resuming the sweep at row {} of {} ({})\n", done + 1, total, partial);
     }
     std::FILE* out = std::fopen(partial.c_str(), "ab");
     if (!out) throw Failure(fmt::format("--output: cannot write '{}'", partial));
-    compute(done, [&](const std::string& rows) {
-      // Whole chunks, flushed: an interrupted sweep leaves complete rows (at most one torn line).
-      if (std::fwrite(rows.data(), 1, rows.size(), out) != rows.size() || std::fflush(out) != 0)
+    distribution.run(done, total, block, compute, [&](std::size_t begin, std::vector<SweepVerdict> v) {
+      // Whole blocks, flushed: an interrupted sweep leaves complete records (and at most one torn).
+      const std::string bytes = journal.encode(axes, begin, v);
+      if (std::fwrite(bytes.data(), 1, bytes.size(), out) != bytes.size() || std::fflush(out) != 0)
         throw Failure(fmt::format("--output: cannot write '{}'", partial));
+      progress.update(static_cast<double>(begin + v.size()));
     });
     if (std::fclose(out) != 0) throw Failure(fmt::format("--output: cannot write '{}'", partial));
-    io::copy_mode(path, partial);
-    if (std::rename(partial.c_str(), path.c_str()) != 0)
-      throw Failure(fmt::format("--output: cannot replace '{}'", path));
+    if (hdf5) {
+      std::ifstream records(partial, std::ios::binary);
+      io::write_atomically(path, [&](const std::string& temporary) {
+        io::write_map_hdf5(temporary, axes, s->options.nonlinear, [&](std::size_t begin, std::size_t end) {
+          std::string bytes((end - begin) * io::kPackedVerdictSize, '\0');
+          records.seekg(static_cast<std::streamoff>(journal.head.size() + begin * io::kPackedVerdictSize));
+          if (!records.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+            throw Failure(fmt::format("--output: cannot read '{}'", partial));
+          return io::unpack_verdicts(bytes);
+        });
+      });
+      fs::remove(partial);
+    } else {
+      io::copy_mode(path, partial);
+      if (std::rename(partial.c_str(), path.c_str()) != 0)
+        throw Failure(fmt::format("--output: cannot replace '{}'", path));
+    }
     std::error_code ignored;
     fs::remove(args_file, ignored);
   };

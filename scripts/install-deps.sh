@@ -14,6 +14,8 @@ packages=(
   python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
   libassimp-dev                       # CAD meshes (STL, OBJ, PLY) for [[body.part]] shape = "mesh"
+  libopenmpi-dev openmpi-bin          # heavytop-mpi: sweeps across the ranks of an MPI job (mpirun)
+  libhdf5-dev                         # big maps as HDF5 (sweep --format hdf5)
   strace                              # tests/startup.sh: what a command opens before its work
   clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
   nodejs chromium                     # the report's page script (npm packages, bundled at build time) and its browser test

@@ -170,6 +170,7 @@ void validate_sweep(const Body& base, const InitialState& base_state,
     const auto colon = why.find(':');
     throw InvalidInput(why.substr(0, colon), why.substr(colon == std::string::npos ? 0 : colon + 2));
   }
+  if (axes.size() > kMaxSweepAxes) throw InvalidInput("vary", fmt::format("give 1 to {} parameters", kMaxSweepAxes));
   for (std::size_t i = 0; i < axes.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (axes[i].key == axes[j].key) throw InvalidInput("vary", fmt::format("'{}' is varied twice", axes[i].key));
@@ -209,6 +210,42 @@ void validate_sweep(const Body& base, const InitialState& base_state,
     if (options.nonlinear_integrator == Integrator::Taylor) detail::refuse_damping(base, "taylor");
     if (options.nonlinear_integrator == Integrator::Dop853) detail::refuse_damping(base, "dop853");
   }
+}
+
+StabilityMap stability_map(const std::vector<SweepAxis>& axes, bool nonlinear, std::vector<SweepVerdict> verdicts) {
+  StabilityMap map{.axes = {}, .nonlinear = nonlinear, .verdicts = std::move(verdicts)};
+  for (const auto& a : axes) {
+    MapAxis& axis = map.axes.emplace_back(MapAxis{.key = a.key, .values = {}});
+    for (std::size_t i = 0; i < a.count; ++i) axis.values.push_back(a.value(i));
+  }
+  return map;
+}
+
+std::size_t nearest_index(const std::vector<double>& values, double value) {
+  return static_cast<std::size_t>(
+      std::min_element(values.begin(), values.end(),
+                       [&](double a, double b) { return std::abs(a - value) < std::abs(b - value); }) -
+      values.begin());
+}
+
+StabilityMap slice(const StabilityMap& map, std::string_view key, double value) {
+  const auto held = std::find_if(map.axes.begin(), map.axes.end(), [&](const MapAxis& a) { return a.key == key; });
+  if (held == map.axes.end()) throw InvalidInput("slice", fmt::format("'{}' is not a varied key of the map", key));
+  if (!std::isfinite(value)) throw InvalidInput("slice", fmt::format("the value of '{}' must be finite", key));
+  const std::vector<double>& values = held->values;
+  const std::size_t nearest = nearest_index(values, value);
+  const std::size_t k = static_cast<std::size_t>(held - map.axes.begin());
+  StabilityMap out{.axes = {}, .nonlinear = map.nonlinear, .verdicts = {}};
+  for (std::size_t j = 0; j < map.axes.size(); ++j)
+    if (j != k) out.axes.push_back(map.axes[j]);
+  // Row-major: index = (outer * size_k + i_k) * inner + rest, `inner` the size of the axes after k.
+  std::size_t inner = 1;
+  for (std::size_t j = k + 1; j < map.axes.size(); ++j) inner *= map.axes[j].values.size();
+  const std::size_t outer = map.verdicts.size() / (inner * values.size());
+  out.verdicts.reserve(outer * inner);
+  for (std::size_t o = 0; o < outer; ++o)
+    for (std::size_t r = 0; r < inner; ++r) out.verdicts.push_back(map.verdicts[(o * values.size() + nearest) * inner + r]);
+  return out;
 }
 
 std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& base_state,

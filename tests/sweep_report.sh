@@ -152,4 +152,32 @@ assert abs(psi[-1] - 200.0 * T) < 1e-3 * 200.0 * T, (psi[-1], 200 * T)
 assert "report-data.js" in html and "heavytop-report.js" in html
 PY
 
+# ---- a three-parameter map in HDF5, drawn by the report as slices ----------------------------
+plate=(--config "$(dirname "$0")/../examples/asymmetric-plate.toml")
+"$H" sweep "${plate[@]}" --vary B/A=1:2.2:12 --vary C/A=1.2:2:5 --vary spin=0:4:12 --model nonlinear --theta0 0.01 \
+  --horizon 10 --format hdf5 --output map3.h5
+check "three-parameter HDF5 sweep exit 0" test $? -eq 0
+check "HDF5 file (magic bytes)" test "$(head -c 4 map3.h5 | od -An -c | tr -d ' ')" = "211HDF"
+"$H" sweep "${plate[@]}" --vary B/A=1:2.2:12 --vary C/A=1.2:2:5 --vary spin=0:4:12 --model nonlinear --theta0 0.01 \
+  --horizon 10 --format hdf5 --output map3-again.h5
+check "the same map is the same HDF5 bytes" cmp -s map3.h5 map3-again.h5
+"$H" report "${plate[@]}" --map map3.h5 --slice C/A=1.2,2 --output sliced > /dev/null
+check "report --map --slice exit 0" test $? -eq 0
+check "report: one heat map per slice" test -s sliced/map-1.png -a -s sliced/map-2.svg -a ! -e sliced/map-3.png
+check "report: the slices' titles and the map's section" python3 - sliced <<'PY'
+import os, sys, xml.etree.ElementTree as ET
+d = sys.argv[1]
+for name, where in (("map-1", "at C/A = 1.2"), ("map-2", "at C/A = 2")):
+    text = " ".join(e.text or "" for e in ET.parse(os.path.join(d, name + ".svg")).getroot().iter())
+    assert where in text and "the real body" in text, text[:300]
+html = open(os.path.join(d, "report.html")).read()
+assert "The map map3.h5" in html and "720 points over B/A (12 values), C/A (5 values), spin (12 values)" in html, html[:200]
+PY
+"$H" report "${plate[@]}" --map map3.h5 --slice mass=1 --output refused 2> err.txt
+check "report: a slice of a key not in the map is refused" test $? -eq 2 -a ! -e refused
+check "report: says which" grep -q -- "--slice: 'mass' is not a varied key of the map" err.txt
+"$H" sweep "${plate[@]}" --vary B/A=1:2:5 --format hdf5 > /dev/null 2> err.txt
+check "HDF5 to stdout is refused" test $? -eq 2
+check "HDF5 to stdout: says why" grep -q "hdf5 format needs a regular file" err.txt
+
 finish

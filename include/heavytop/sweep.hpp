@@ -2,7 +2,7 @@
 /// \file
 /// Stability maps: each linear model's verdict, the real body's Lyapunov verdict (proven stable
 /// or not, lyapunov.hpp), and optionally the nonlinear body's practical verdict, over a grid of
-/// one or two parameters.
+/// one, two or three parameters.
 
 #include <array>
 #include <cstddef>
@@ -30,6 +30,9 @@ struct SweepAxis {
   /// The i-th value, START + i (STOP - START) / (COUNT - 1), in the key's SI unit.
   double value(std::size_t i) const;
 };
+
+/// The most parameters a sweep may vary at once (a map of B/A, C/A and the spin, say).
+inline constexpr std::size_t kMaxSweepAxes = 3;
 
 /// The most grid points a sweep may have (a 10^4 x 10^4 map; about 3 GB of CSV).
 inline constexpr std::size_t kMaxSweepPoints = 100'000'000;
@@ -85,8 +88,33 @@ struct SweepVerdict {
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
 };
 
-/// Throws InvalidInput (key "vary", naming the grid point) unless the grid has at most
-/// kMaxSweepPoints points and every grid point gives a valid body and state (checked at the
+/// One axis of a stability map: the key and its values (in the key's SI unit), as a sweep
+/// computed them (SweepAxis::value) or as a map file holds them.
+struct MapAxis {
+  std::string key;
+  std::vector<double> values;
+};
+
+/// A stability map: the verdicts at every point of a grid (what `heavytop sweep` writes).
+struct StabilityMap {
+  std::vector<MapAxis> axes;          ///< the grid, the first axis slowest
+  bool nonlinear = false;             ///< true if the verdicts hold the nonlinear one
+  std::vector<SweepVerdict> verdicts; ///< one per grid point, row-major (the product of the axes' sizes)
+};
+
+/// The map of a sweep over `axes` with these verdicts (one per grid point, in grid order).
+StabilityMap stability_map(const std::vector<SweepAxis>& axes, bool nonlinear, std::vector<SweepVerdict> verdicts);
+
+/// The index of the value in `values` (not empty) nearest `value` (the first of equals).
+std::size_t nearest_index(const std::vector<double>& values, double value);
+
+/// The map with axis `key` held at its grid value nearest `value` (in the key's SI unit): one
+/// axis fewer (a three-parameter map's slice is a two-parameter map). Throws InvalidInput (key
+/// "slice") if `key` is not an axis of the map or `value` is not finite.
+StabilityMap slice(const StabilityMap& map, std::string_view key, double value);
+
+/// Throws InvalidInput (key "vary", naming the grid point) unless at most kMaxSweepAxes distinct
+/// keys are varied (none: the base point alone), the grid has at most kMaxSweepPoints points and every grid point gives a valid body and state (checked at the
 /// grid's corners, which bound every rule), and, with options.nonlinear, the start is tilted
 /// (else the upright body never moves) by less than max_tilt.
 void validate_sweep(const Body& base, const InitialState& base_state,

@@ -34,7 +34,7 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
-                   precession, rpm, simulate, stability, sweep)
+                   precession, read_map, rpm, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
@@ -42,7 +42,7 @@ from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationChec
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
-    "stability", "simulate", "compare", "sweep", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
+    "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
     "body_from_parts", "body_report", "precession", "rpm",
     "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",

@@ -17,7 +17,7 @@ from .results import (Comparison, DecayFit, Derivation, DerivationCheck, Lifetim
                       StabilityMap, Trajectory)
 from .results import SimulationSummary
 
-__all__ = ["stability", "simulate", "compare", "sweep", "derive", "derive_rotations", "derive_check", "body_from_parts",
+__all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
            "body_report", "precession", "rpm", "lifetime", "fit_decay"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
@@ -168,13 +168,13 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
           horizon: float = 100.0, max_tilt: float = 0.5, rtol: Optional[float] = None,
           atol: Optional[float] = None,
           integrator: Optional[SweepIntegratorName] = None) -> StabilityMap:
-    """A stability map: each model's verdict over a grid of one or two parameters.
+    """A stability map: each model's verdict over a grid of one, two or three parameters.
 
     The computation of `heavytop sweep --vary KEY=START:STOP:COUNT [--vary ...]`, in C++ on every
     core with the GIL released.
 
         body        Body (SI units): the base the grid varies
-        vary        {KEY: values} with one or two keys, each a body key (A, B, C, mass, gravity,
+        vary        {KEY: values} with one to three keys, each a body key (A, B, C, mass, gravity,
                     length), "spin", or a ratio "B/A" or "C/A" (the numerator changes, the
                     denominator is held at the body's value); values a 1-D array (SI units).
                     The grid is the product of the arrays, the first key slowest (dict order).
@@ -212,6 +212,21 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
                           phi_rate0=phi_rate0, nonlinear=nonlinear, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
                           atol=atol, integrator=integrator)
     shape = tuple(int(np.size(values)) for values in vary.values())  # checked by the core: 1-D arrays
+    return StabilityMap(columns, shape)
+
+
+def read_map(path: "os.PathLike[str] | str") -> StabilityMap:
+    """A stability map written by `heavytop sweep --output FILE` (CSV, or HDF5 with --format hdf5),
+    read back as sweep() returns one: a StabilityMap of one array per CSV column (the varied
+    keys' values in SI units, float64; a bool array per model; the certificates as strings),
+    shaped by .grid(NAME) to the map's grid (one to three keys, the first slowest).
+
+    A three-parameter map's heat maps are its slices: read_map("map.h5").slice("C/A", 2.0)
+    holds C/A at its grid value nearest 2.0, and .plot("nonlinear") draws it (matplotlib).
+    The file is read in C++ (no h5py needed); a file that is not a sweep's map raises
+    InvalidInput naming `path` and what is wrong ("path: row 7 has 5 columns, the header 7").
+    """
+    columns, shape = _core.read_map(os.fspath(path))
     return StabilityMap(columns, shape)
 
 

@@ -584,5 +584,42 @@ class StabilityMap(_Columns):
         """Column `name` as an array of the grid's shape (a view)."""
         return self._columns[name].reshape(self._shape)
 
+    def slice(self, key: str, value: float) -> "StabilityMap":
+        """The map with varied key `key` held at its grid value nearest `value` (SI units): one
+        key fewer, the others in their order (a three-parameter map's slice is a heat map's
+        grid). The held key's column is dropped. Raises InvalidInput ("slice: ...") if `key`
+        is not varied or `value` is not finite; as `heavytop report --map FILE --slice`."""
+        from ._core import InvalidInput
+        keys = list(self.parameters)
+        if key not in keys:
+            raise InvalidInput(f"slice: '{key}' is not a varied key of the map")
+        if not np.isfinite(value):
+            raise InvalidInput(f"slice: the value of '{key}' must be finite")
+        axis = keys.index(key)
+        along = np.moveaxis(self.grid(key), axis, 0).reshape(self._shape[axis], -1)[:, 0]  # the key's grid values
+        nearest = int(np.argmin(np.abs(along - value)))
+        columns = {name: np.ascontiguousarray(np.take(self.grid(name), nearest, axis=axis)).reshape(-1)
+                   for name in self._columns if name != key}
+        return StabilityMap(columns, self._shape[:axis] + self._shape[axis + 1:])
+
+    def plot(self, name: str = "linearized", ax: Any = None) -> Any:
+        """A heat map of column `name` (stable in colour, unstable grey) over a two-parameter map
+        (a three-parameter map's slice()), the first key across, with matplotlib; returns the
+        Axes. Raises ValueError unless the map has two keys."""
+        if len(self._shape) != 2:
+            raise ValueError(f"plot: a heat map needs two varied keys, this map has {len(self._shape)} (take a slice())")
+        import matplotlib.pyplot as plt
+        from matplotlib.colors import ListedColormap
+        if ax is None:
+            ax = plt.figure().add_subplot()
+        first, second = list(self.parameters)
+        x, y = self.grid(first)[:, 0], self.grid(second)[0, :]
+        ax.pcolormesh(x, y, self.grid(name).T.astype(float), cmap=ListedColormap(["#d9d9d9", "#2ca02c"]),
+                      vmin=0, vmax=1, shading="nearest")
+        ax.set_xlabel(first)
+        ax.set_ylabel(second)
+        ax.set_title(f"{name}: stable (green) or not (grey)")
+        return ax
+
     def __repr__(self) -> str:
         return f"StabilityMap(shape={self._shape!r}, columns={self.columns!r})"

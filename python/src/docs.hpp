@@ -73,6 +73,10 @@ constexpr const char* kCoreStability =
 constexpr const char* kCoreCompare =
     "heavytop.compare without defaults, as json.loads of `heavytop compare --format json` (a dict).";
 
+constexpr const char* kCoreReadMap = R"doc(The columns and grid shape of a map file written by `heavytop sweep` (CSV or HDF5).
+
+The engine behind heavytop.read_map(), which returns a StabilityMap.)doc";
+
 constexpr const char* kCoreSweep =
     "heavytop.sweep without defaults: a dict of arrays, one per CSV column of `heavytop sweep`.";
 

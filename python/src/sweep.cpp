@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "docs.hpp"
+#include "heavytop/io/map_file.hpp"
 #include "heavytop/linear_models.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
@@ -52,7 +53,8 @@ std::vector<SweepAxis> point_axes(const std::vector<VariedKey>& keys, std::size_
 
 /// The varied keys and their values, checked as the command line checks --vary (key "vary").
 std::vector<VariedKey> varied_keys(const py::dict& vary) {
-  if (vary.size() < 1 || vary.size() > 2) throw InvalidInput("vary", "give one or two parameters");
+  if (vary.size() < 1 || vary.size() > kMaxSweepAxes)
+    throw InvalidInput("vary", fmt::format("give 1 to {} parameters", kMaxSweepAxes));
   std::vector<VariedKey> keys;
   for (const auto& [k, v] : vary) {
     if (!py::isinstance<py::str>(k))
@@ -70,6 +72,50 @@ std::vector<VariedKey> varied_keys(const py::dict& vary) {
     keys.push_back({key, std::move(values)});
   }
   return keys;
+}
+
+/// The CLI's columns of a map: each varied key's value at every grid point, each linear model,
+/// `lyapunov` (proven Lyapunov stable), `lyapunov_certificate` (names), `nonlinear` if held.
+py::dict map_columns(const StabilityMap& map) {
+  const std::size_t total = map.verdicts.size();
+  py::dict out;
+  std::vector<std::size_t> counts;
+  for (const auto& a : map.axes) counts.push_back(a.values.size());
+  std::vector<double*> value_columns;
+  for (const auto& a : map.axes) {
+    py::array_t<double> column(static_cast<py::ssize_t>(total));
+    value_columns.push_back(column.mutable_data());
+    out[py::str(a.key)] = column;
+  }
+  const std::size_t model_count = kLinearModels.size() + 1 + (map.nonlinear ? 1 : 0);
+  std::vector<bool*> verdict_columns;
+  for (std::size_t m = 0; m < model_count; ++m) {
+    py::array_t<bool> column(static_cast<py::ssize_t>(total));
+    verdict_columns.push_back(column.mutable_data());
+    out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m]))
+                : m == kLinearModels.size() ? "lyapunov" : "nonlinear")] = column;
+    if (m == kLinearModels.size()) out["lyapunov_certificate"] = py::none();  // its place; filled below
+  }
+  without_gil([&] {
+    for (std::size_t i = 0; i < total; ++i) {
+      const std::vector<std::size_t> at = grid_indices(counts, i);
+      for (std::size_t k = 0; k < map.axes.size(); ++k) value_columns[k][i] = map.axes[k].values[at[k]];
+      const SweepVerdict& v = map.verdicts[i];
+      for (std::size_t m = 0; m < kLinearModels.size(); ++m) verdict_columns[m][i] = v.linear[m];
+      verdict_columns[kLinearModels.size()][i] = v.lyapunov;
+      if (map.nonlinear) verdict_columns.back()[i] = v.nonlinear.value_or(false);
+    }
+  });
+  // The certificates' names, as a NumPy array of strings (the CLI's column): the names
+  // indexed by each point's code (one Python string per name, not per point).
+  py::list names;
+  for (int c = 0; c <= static_cast<int>(LyapunovCertificate::None); ++c)
+    names.append(py::str(std::string(name(static_cast<LyapunovCertificate>(c)))));
+  py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(total));
+  std::uint8_t* code = codes.mutable_data();
+  for (std::size_t i = 0; i < total; ++i) code[i] = static_cast<std::uint8_t>(map.verdicts[i].lyapunov_certificate);
+  out["lyapunov_certificate"] = py::module_::import("numpy").attr("array")(names, "dtype"_a = "U")[codes];
+  return out;
 }
 
 py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta0, double phi0,
@@ -107,57 +153,34 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
     }
   });
 
-  py::dict out;
-  std::vector<double*> value_columns;
-  for (const auto& k : keys) {
-    py::array_t<double> column(static_cast<py::ssize_t>(total));
-    value_columns.push_back(column.mutable_data());
-    out[py::str(k.key)] = column;
-  }
-  // The CLI's columns: each linear model, `lyapunov` (proven Lyapunov stable), `nonlinear` if asked.
-  const std::size_t model_count = kLinearModels.size() + 1 + (nonlinear ? 1 : 0);
-  std::vector<bool*> verdict_columns;
-  for (std::size_t m = 0; m < model_count; ++m) {
-    py::array_t<bool> column(static_cast<py::ssize_t>(total));
-    verdict_columns.push_back(column.mutable_data());
-    out[py::str(m < kLinearModels.size() ? std::string(name(kLinearModels[m]))
-                : m == kLinearModels.size() ? "lyapunov" : "nonlinear")] = column;
-    if (m == kLinearModels.size()) out["lyapunov_certificate"] = py::none();  // its place; filled below
-  }
-  std::vector<LyapunovCertificate> certificates(total);
-
+  StabilityMap map{.axes = {}, .nonlinear = nonlinear, .verdicts = std::vector<SweepVerdict>(total)};
+  for (const auto& k : keys) map.axes.push_back(MapAxis{.key = k.key, .values = {k.data(), k.data() + k.size()}});
   without_gil([&] {
-    std::vector<SweepVerdict> verdicts(total);
     SweepOptions one_thread = options;
     one_thread.threads = 1;  // the blocks are spread over the threads here
     if (cli_grid) {
       // The command line's own grid: the calls it makes, block by block.
       parallel_blocks(total, 16, [&](std::size_t begin, std::size_t end) {
-        std::ranges::copy(sweep_verdicts(body, state, axes, one_thread, begin, end), verdicts.begin() + begin);
+        std::ranges::copy(sweep_verdicts(body, state, axes, one_thread, begin, end), map.verdicts.begin() + begin);
       });
     } else {
       // Any values: each point is a grid of one point at its exact values, judged by the same call.
       parallel_blocks(total, 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
-          verdicts[i] = sweep_verdicts(body, state, point_axes(keys, i), one_thread, 0, 1)[0];
+          map.verdicts[i] = sweep_verdicts(body, state, point_axes(keys, i), one_thread, 0, 1)[0];
       });
     }
-    std::vector<std::size_t> counts;
-    for (const auto& k : keys) counts.push_back(k.size());
-    for (std::size_t i = 0; i < total; ++i) {
-      const std::vector<std::size_t> at = grid_indices(counts, i);
-      for (std::size_t k = 0; k < keys.size(); ++k) value_columns[k][i] = keys[k].data()[at[k]];
-      for (std::size_t m = 0; m < kLinearModels.size(); ++m) verdict_columns[m][i] = verdicts[i].linear[m];
-      verdict_columns[kLinearModels.size()][i] = verdicts[i].lyapunov;
-      certificates[i] = verdicts[i].lyapunov_certificate;
-      if (nonlinear) verdict_columns.back()[i] = verdicts[i].nonlinear.value_or(false);
-    }
   });
-  // The certificates' names, as a NumPy array of strings (the CLI's column).
-  py::list names;
-  for (LyapunovCertificate c : certificates) names.append(py::str(std::string(name(c))));
-  out["lyapunov_certificate"] = py::module_::import("numpy").attr("array")(names, "dtype"_a = "U");
-  return out;
+  return map_columns(map);
+}
+
+/// A map file's columns and its grid's shape.
+py::tuple read_map(const std::string& path) {
+  StabilityMap map;
+  without_gil([&] { map = io::read_map(path, "path"); });
+  py::list shape;
+  for (const auto& a : map.axes) shape.append(a.values.size());
+  return py::make_tuple(map_columns(map), py::tuple(shape));
 }
 
 py::array_t<double> grid_values(double start, double stop, long long count) {
@@ -176,6 +199,7 @@ void bind_sweep(py::module_& m) {
   m.def("sweep", &sweep, docs::kCoreSweep, "body"_a, "vary"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
         "theta_rate0"_a, "phi_rate0"_a, "nonlinear"_a, "horizon"_a, "max_tilt"_a, "rtol"_a = py::none(),
         "atol"_a = py::none(), "integrator"_a = py::none());
+  m.def("read_map", &read_map, docs::kCoreReadMap, "path"_a);
   m.def("grid_values", &grid_values, docs::kGridValues, "start"_a, "stop"_a, "count"_a);
 }
 

@@ -125,8 +125,8 @@ def test_sweep_refuses_bad_input_naming_the_key():
     body = BODIES["reference"]
     values = np.linspace(0.5, 1.5, 3)
     cases = [
-        (dict(vary={}), "vary: give one or two parameters"),
-        (dict(vary={"A": values, "B": values, "C": values}), "vary: give one or two parameters"),
+        (dict(vary={}), "vary: give 1 to 3 parameters"),
+        (dict(vary={"A": values, "B": values, "C": values, "mass": values}), "vary: give 1 to 3 parameters"),
         (dict(vary={"D": values}), "vary: unknown key 'D'"),
         (dict(vary={"spin": []}), "vary: the values of 'spin' must be a 1-D array"),
         (dict(vary={"spin": np.ones((2, 2))}), "vary: the values of 'spin' must be a 1-D array"),

@@ -360,18 +360,23 @@ Figure plot_wander(const std::string& dir, const Body& body, std::optional<doubl
                 plot, scratch, 1500, 950);
 }
 
-Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
-                      const std::vector<SweepVerdict>& verdicts) {
+Figure plot_sweep_map(const std::string& dir, const StabilityMap& map, const std::string& name,
+                      const std::string& where) {
   const Scratch scratch(dir);
-  const std::string data = scratch.file("map.dat");
+  const std::string data = scratch.file(name + ".dat");
+  // Against the exact linearisation: the paper's (4), or the real body when the map has it.
+  const bool truth = map.nonlinear;
   {
     std::ofstream out(scratch.path(data));
-    for (std::size_t i = 0; i < verdicts.size(); ++i) {
-      // 0 neither, 1 only (4) (a false promise), 2 only the linearisation ((9) too strict), 3 both.
-      const int category = int(verdicts[i].linear[0]) + 2 * int(verdicts[i].linear[2]);
-      const auto point = grid_values(axes, i);
-      out << fmt::format("{} {} {}\n", point[0], point[1], category);
-      if ((i + 1) % axes[1].count == 0) out << "\n";
+    const auto& [first, second] = std::pair{map.axes.at(0), map.axes.at(1)};
+    for (std::size_t i = 0; i < map.verdicts.size(); ++i) {
+      // 0 neither, 1 only the first (a false promise), 2 only the second (too strict), 3 both.
+      const SweepVerdict& v = map.verdicts[i];
+      const int category = truth ? int(v.linear[2]) + 2 * int(v.nonlinear.value_or(false))
+                                 : int(v.linear[0]) + 2 * int(v.linear[2]);
+      out << fmt::format("{} {} {}\n", first.values[i / second.values.size()], second.values[i % second.values.size()],
+                         category);
+      if ((i + 1) % second.values.size() == 0) out << "\n";
     }
   }
   auto label = [](const std::string& key) {
@@ -379,20 +384,29 @@ Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes
          : key == "length" ? std::string("length R (m)") : key == "mass" ? std::string("mass (kg)")
          : key == "gravity" ? std::string("gravity (m/s^2)") : key + " (kg m^2)";
   };
+  const char* one = truth ? "the exact linearisation" : "the paper (4)";
+  const char* two = truth ? "the real body" : "the exact linearisation";
   const std::string plot = fmt::format(
-      "set title 'Stability map: the paper (4) against the exact linearisation'\n"
+      "set title 'Stability map{}: {} against {}'\n"
       "set xlabel '{}'\nset ylabel '{}'\nset tics out\nset autoscale fix\n"
       "set palette maxcolors 4\nset palette defined (0 '#d9d9d9', 1 '#d62728', 2 '#1f77b4', 3 '#2ca02c')\n"
       "set cbrange [-0.5:3.5]\n"
-      "set cbtics ('both unstable' 0, 'only (4) stable:' 1.15, 'a false promise' 0.85, 'only the exact stable:' 2.15, "
-      "'(9) too strict' 1.85, 'both stable' 3) scale 0\n"
+      "set cbtics ('both unstable' 0, 'only {} stable:' 1.15, 'a false promise' 0.85, 'only {} stable:' 2.15, "
+      "'{}' 1.85, 'both stable' 3) scale 0\n"
       "set colorbox user origin 0.72,0.15 size 0.03,0.7\nset rmargin at screen 0.70\n"
       "plot '{}' using 1:2:3 with image notitle\n",
-      label(axes[0].key), label(axes[1].key), data);
-  return render("stability-map",
-                "Each grid point coloured by the verdicts of (4) and of the exact linearisation: red where the "
-                "paper promises a stability that is not there, blue where it is too strict.",
-                plot, scratch, 1500, 950);
+      where.empty() ? "" : " " + where, one, two, label(map.axes[0].key), label(map.axes[1].key),
+      truth ? "the linearisation" : "(4)", truth ? "the real body" : "the exact", truth ? "(linearly unstable)" : "(9) too strict",
+      data);
+  const std::string caption =
+      truth ? fmt::format("Each grid point{} coloured by the verdicts of the exact linearisation and of the nonlinear "
+                          "simulation: red where the linearisation promises a stability the real body does not keep "
+                          "over the horizon, blue where the body stays up though linearly unstable.",
+                          where.empty() ? "" : " " + where)
+            : fmt::format("Each grid point{} coloured by the verdicts of (4) and of the exact linearisation: red where "
+                          "the paper promises a stability that is not there, blue where it is too strict.",
+                          where.empty() ? "" : " " + where);
+  return render(name, caption, plot, scratch, 1500, 950);
 }
 
 Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life) {

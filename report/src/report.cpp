@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -289,7 +290,28 @@ class Staging {
 
 }  // namespace
 
-void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end) {
+std::vector<std::pair<std::string, StabilityMap>> ReportMap::heat_maps() const {
+  if (map.axes.size() < 2) throw InvalidInput("map", "a map of one key has no heat map (give a map of two or three keys)");
+  if (map.axes.size() == 2) {
+    if (!held.empty() || !values.empty())
+      throw InvalidInput("slice", "a map of two keys is drawn whole (slices are for three-key maps)");
+    return {{"", map}};
+  }
+  const std::string key = held.empty() ? map.axes.back().key : held;
+  const auto axis = std::find_if(map.axes.begin(), map.axes.end(), [&](const MapAxis& a) { return a.key == key; });
+  if (axis == map.axes.end()) throw InvalidInput("slice", fmt::format("'{}' is not a varied key of the map", key));
+  std::vector<double> at = values;
+  if (at.empty()) at = {axis->values.front(), axis->values[axis->values.size() / 2], axis->values.back()};
+  std::vector<std::pair<std::string, StabilityMap>> out;
+  for (double v : at) {
+    if (!std::isfinite(v)) throw InvalidInput("slice", fmt::format("the value of '{}' must be finite", key));
+    out.emplace_back(fmt::format("at {} = {:.6g}", key, axis->values[nearest_index(axis->values, v)]), slice(map, key, v));
+  }
+  return out;
+}
+
+void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
+                  const std::optional<ReportMap>& map) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir)) throw InvalidInput("--output", fmt::format("cannot create the folder '{}'", dir));
@@ -317,7 +339,13 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   // 1.4 MB) keeps the folder of the built-in example under 5 MB.
   const std::vector<SweepAxis> axes{{"B/A", lo, hi, 160}, {"spin", 0.0, top, 160}};
   const auto verdicts = sweep_verdicts(body, state, axes, SweepOptions{}, 0, grid_size(axes));
-  figures.push_back(plot_sweep_map(staging.path(), axes, verdicts));
+  figures.push_back(plot_sweep_map(staging.path(), stability_map(axes, false, verdicts)));
+  // A map file of the reader's: its heat maps (a three-key map's slices).
+  std::vector<Figure> map_figures;
+  if (map)
+    for (const auto& [where, two] : map->heat_maps())
+      map_figures.push_back(
+          plot_sweep_map(staging.path(), two, fmt::format("map-{}", map_figures.size() + 1), where));
   // With damping: how long it stays up (SPEC section 8).
   std::optional<Lifetime> life;
   if (!body.damping.conservative()) {
@@ -380,6 +408,17 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
        << fmt::format("{:.1e}", c.summary.max_relative_energy_drift) << ").</p>\n"
        << comparison_html(c);
   html << plots_html(body);
+  if (map) {
+    std::string keys;
+    for (const auto& a : map->map.axes) keys += fmt::format("{}{} ({} values)", keys.empty() ? "" : ", ", a.key, a.values.size());
+    html << "<h2>The map " << html_escape(map->file) << "</h2>\n<p>" << map->map.verdicts.size() << " points over "
+         << html_escape(keys) << (map->map.nonlinear ? ", with the nonlinear verdict" : "")
+         << (map->map.axes.size() == 3 ? "; heat maps at values of one key (the nearest grid values)." : ".") << "</p>\n";
+    for (const Figure& f : map_figures)
+      html << fmt::format("<figure><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "
+                          "<a href='{0}.svg'>SVG</a>)</figcaption></figure>\n",
+                          f.name, html_escape(f.caption));
+  }
   html << "<h2>Figures (for print)</h2>\n";
   for (const Figure& f : figures)
     html << fmt::format("<figure><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "
@@ -399,6 +438,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   data.emplace_back("report.html", html.str());  // last: the page appears when all it needs is there
 
   // Everything is made: put it in place, each file by a temporary name and a rename.
+  figures.insert(figures.end(), map_figures.begin(), map_figures.end());
   for (const Figure& f : figures)
     for (const char* extension : {".png", ".svg"}) {
       const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();

@@ -70,9 +70,12 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
 /// sqrt(2 delta) plateau at the boundary of (9) and the jump below it (erratum E2). Exact
 /// (the Lagrange top's cubic) for A = B, integrated for A != B.
 Figure plot_wander(const std::string& dir, const Body& body, std::optional<double> critical_spin);
-/// A two-parameter sweep's map as a heat map: where (4) and the linearisation agree or not.
-Figure plot_sweep_map(const std::string& dir, const std::vector<SweepAxis>& axes,
-                      const std::vector<SweepVerdict>& verdicts);
+/// A two-parameter map as a heat map, figure `name` (default "stability-map"): where the
+/// paper's (4) and the exact linearisation agree or not; for a map with the nonlinear
+/// verdict, where the linearisation and the real body do. `where` ends the title (a slice's
+/// held value, e.g. "at C/A = 2").
+Figure plot_sweep_map(const std::string& dir, const StabilityMap& map, const std::string& name = "stability-map",
+                      const std::string& where = "");
 
 /// How long a damped top stays up (SPEC section 8): its spin w.k and its tilt against time
 /// from the damped nonlinear run of `life`, the critical spin as a line, the time the spin law

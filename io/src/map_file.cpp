@@ -1,0 +1,362 @@
+#include "heavytop/io/map_file.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "heavytop/io/formats.hpp"
+#include "heavytop/io/output.hpp"
+#include "heavytop/linear_models.hpp"
+
+#ifdef HEAVYTOP_HAVE_HDF5
+#include <hdf5.h>
+#endif
+
+namespace heavytop::io {
+namespace {
+
+constexpr LyapunovCertificate kCertificates[] = {
+    LyapunovCertificate::EnergyCasimir, LyapunovCertificate::Chetaev,           LyapunovCertificate::CriticalQuartic,
+    LyapunovCertificate::OddIndex,      LyapunovCertificate::LinearInstability, LyapunovCertificate::None};
+constexpr std::string_view kVerdictColumns[] = {"first-order", "body-fixed", "linearized", "lyapunov"};
+constexpr const char* kFormatName = "heavytop stability map 1";
+constexpr std::size_t kRowsPerBlock = 1 << 20;  // of a map file, written or read at a time
+
+std::string read_whole(const std::string& path, const std::string& key) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The axes (keys and values, exact) of rows whose first columns are a row-major grid.
+std::vector<MapAxis> grid_of_rows(const std::vector<std::string>& keys, const std::vector<std::vector<double>>& rows,
+                                  const std::string& key) {
+  std::vector<MapAxis> axes;
+  std::size_t points = 1, inner = rows.size();
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    // Axis k takes its next value every `inner / size` rows; its values are those of the
+    // first rows of the first stretch of the axes before it.
+    MapAxis axis{.key = keys[k], .values = {}};
+    std::size_t run = 1;
+    while (run < inner && rows[run][k] == rows[0][k]) ++run;
+    if (run == 0 || inner % run != 0) throw InvalidInput(key, fmt::format("the rows are not a grid of '{}'", keys[k]));
+    for (std::size_t i = 0; i < inner; i += run) axis.values.push_back(rows[i][k]);
+    points *= axis.values.size();
+    inner = run;
+    axes.push_back(std::move(axis));
+  }
+  if (points != rows.size()) throw InvalidInput(key, "the rows are not a grid");
+  for (std::size_t r = 0; r < rows.size(); ++r) {  // every row at its grid point, in grid order
+    std::size_t index = r;
+    for (std::size_t k = axes.size(); k-- > 0;) {
+      if (rows[r][k] != axes[k].values[index % axes[k].values.size()])
+        throw InvalidInput(key, fmt::format("row {}: '{}' is not the grid's value there", r + 2, keys[k]));
+      index /= axes[k].values.size();
+    }
+  }
+  return axes;
+}
+
+StabilityMap read_map_csv(const std::string& text, const std::string& key) {
+  const std::size_t eol = text.find('\n');
+  if (eol == std::string::npos) throw InvalidInput(key, "not a sweep's CSV (no header line)");
+  std::vector<std::string> header;
+  for (std::string_view line(text.data(), eol); !line.empty();) {
+    const std::size_t comma = std::min(line.find(','), line.size());
+    header.emplace_back(line.substr(0, comma));
+    line.remove_prefix(std::min(line.size(), comma + 1));
+  }
+  const auto first_verdict = std::find(header.begin(), header.end(), "first-order");
+  const std::vector<std::string> keys(header.begin(), first_verdict);
+  const bool nonlinear = !header.empty() && header.back() == "nonlinear";
+  std::vector<SweepAxis> named;
+  for (const auto& k : keys) named.push_back(SweepAxis{.key = k, .start = 0, .stop = 0, .count = 1});
+  if (keys.empty() || keys.size() > kMaxSweepAxes || text.substr(0, eol + 1) != sweep_csv_header(named, nonlinear))
+    throw InvalidInput(key, "not a sweep's CSV: the header must be 1 to 3 varied keys, then " +
+                                std::string(sweep_csv_header({}, nonlinear).substr(0, sweep_csv_header({}, nonlinear).size() - 1)));
+  std::vector<std::vector<double>> values;
+  std::vector<SweepVerdict> verdicts;
+  std::size_t row = 1;
+  for (std::size_t at = eol + 1; at < text.size(); ++row) {
+    const std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) throw InvalidInput(key, fmt::format("row {} is torn (no end of line)", row + 1));
+    std::string_view line(text.data() + at, end - at);
+    at = end + 1;
+    std::vector<std::string_view> cells;
+    for (std::size_t from = 0;;) {
+      const std::size_t comma = line.find(',', from);
+      cells.push_back(line.substr(from, comma == std::string_view::npos ? std::string_view::npos : comma - from));
+      if (comma == std::string_view::npos) break;
+      from = comma + 1;
+    }
+    if (cells.size() != header.size())
+      throw InvalidInput(key, fmt::format("row {} has {} columns, the header {}", row + 1, cells.size(), header.size()));
+    auto& point = values.emplace_back(keys.size());
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      const auto [p, ec] = std::from_chars(cells[k].data(), cells[k].data() + cells[k].size(), point[k]);
+      if (ec != std::errc() || p != cells[k].data() + cells[k].size())
+        throw InvalidInput(key, fmt::format("row {}: '{}' is not a number", row + 1, cells[k]));
+    }
+    auto flag = [&](std::size_t c) {
+      if (cells[c] != "0" && cells[c] != "1")
+        throw InvalidInput(key, fmt::format("row {}: column '{}' must be 0 or 1", row + 1, header[c]));
+      return cells[c] == "1";
+    };
+    SweepVerdict& v = verdicts.emplace_back();
+    const std::size_t c = keys.size();
+    for (std::size_t m = 0; m < 3; ++m) v.linear[m] = flag(c + m);
+    v.lyapunov = flag(c + 3);
+    const auto certificate = std::find_if(std::begin(kCertificates), std::end(kCertificates),
+                                          [&](LyapunovCertificate x) { return name(x) == cells[c + 4]; });
+    if (certificate == std::end(kCertificates))
+      throw InvalidInput(key, fmt::format("row {}: '{}' is not a certificate (SPEC section 7)", row + 1, cells[c + 4]));
+    v.lyapunov_certificate = *certificate;
+    if (nonlinear) v.nonlinear = flag(c + 5);
+  }
+  if (verdicts.empty()) throw InvalidInput(key, "the map has no rows");
+  return StabilityMap{.axes = grid_of_rows(keys, values, key), .nonlinear = nonlinear, .verdicts = std::move(verdicts)};
+}
+
+#ifdef HEAVYTOP_HAVE_HDF5
+/// An HDF5 identifier closed when it goes out of scope.
+struct Handle {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  Handle(hid_t i, herr_t (*c)(hid_t)) : id(i), close(c) {}
+  Handle(const Handle&) = delete;
+  ~Handle() {
+    if (id >= 0) close(id);
+  }
+  operator hid_t() const { return id; }
+};
+
+hid_t certificate_type() {
+  const hid_t type = H5Tenum_create(H5T_NATIVE_UINT8);
+  for (LyapunovCertificate c : kCertificates) {
+    const std::uint8_t value = static_cast<std::uint8_t>(c);
+    H5Tenum_insert(type, std::string(name(c)).c_str(), &value);
+  }
+  return type;
+}
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw Failure(what);
+}
+#endif
+
+}  // namespace
+
+void pack_verdicts(const std::vector<SweepVerdict>& verdicts, std::string& out) {
+  out.reserve(out.size() + verdicts.size() * kPackedVerdictSize);
+  for (const auto& v : verdicts) {
+    const char record[kPackedVerdictSize] = {char(v.linear[0]), char(v.linear[1]), char(v.linear[2]), char(v.lyapunov),
+                                             char(v.lyapunov_certificate), char(v.nonlinear ? int(*v.nonlinear) : 2)};
+    out.append(record, kPackedVerdictSize);
+  }
+}
+
+std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
+  if (bytes.size() % kPackedVerdictSize != 0) throw Failure("packed verdicts: a record is torn");
+  std::vector<SweepVerdict> out(bytes.size() / kPackedVerdictSize);
+  constexpr auto kLast = static_cast<unsigned char>(LyapunovCertificate::None);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const auto* r = reinterpret_cast<const unsigned char*>(bytes.data() + i * kPackedVerdictSize);
+    if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || r[5] > 2)
+      throw Failure("packed verdicts: a byte is out of range");
+    out[i] = SweepVerdict{.linear = {r[0] == 1, r[1] == 1, r[2] == 1}, .lyapunov = r[3] == 1,
+                          .lyapunov_certificate = static_cast<LyapunovCertificate>(r[4]),
+                          .nonlinear = r[5] == 2 ? std::nullopt : std::optional<bool>(r[5] == 1)};
+  }
+  return out;
+}
+
+#ifndef HEAVYTOP_HAVE_HDF5
+bool hdf5_available() { return false; }
+
+void write_map_hdf5(const std::string&, const std::vector<SweepAxis>&, bool, const VerdictSource&, const std::string& key) {
+  throw InvalidInput(key, "this heavytop was built without HDF5 (Debian's libhdf5-dev)");
+}
+
+StabilityMap read_map(const std::string& path, const std::string& key) {
+  const std::string text = read_whole(path, key);
+  if (text.starts_with("\x89HDF")) throw InvalidInput(key, fmt::format("'{}' is HDF5: this heavytop was built without HDF5", path));
+  return read_map_csv(text, key);
+}
+#else
+bool hdf5_available() { return true; }
+
+void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes, bool nonlinear,
+                    const VerdictSource& source, const std::string& key) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures are reported as exceptions, not printed
+  const std::string failed = fmt::format("{}: cannot write '{}' (HDF5)", key, path);
+  const Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (file < 0) throw Failure(failed);
+  // No modification times anywhere: the same map is the same bytes.
+  const Handle create(H5Pcreate(H5P_OBJECT_CREATE), H5Pclose);
+  const Handle group_create(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+  check(H5Pset_obj_track_times(group_create, false), failed);
+  auto attribute = [&](hid_t on, const char* name, hid_t type, const void* value) {
+    const Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    const Handle a(H5Acreate2(on, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    check(a < 0 ? -1 : H5Awrite(a, type, value), failed);
+  };
+  auto text_attribute = [&](hid_t on, const char* name, const std::string& value) {
+    const Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(type, std::max<std::size_t>(1, value.size()));
+    attribute(on, name, type, value.c_str());
+  };
+  const std::size_t points = grid_size(axes);
+  const hsize_t size = points;
+  auto dataset = [&](hid_t where, const char* name, hid_t type, hsize_t length) {
+    const Handle space(H5Screate_simple(1, &length, nullptr), H5Sclose);
+    const Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    const hsize_t chunk = std::min<hsize_t>(length, 1 << 16);
+    check(H5Pset_obj_track_times(dcpl, false), failed);
+    check(H5Pset_chunk(dcpl, 1, &chunk), failed);
+    check(H5Pset_deflate(dcpl, 4), failed);
+    const hid_t d = H5Dcreate2(where, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    if (d < 0) throw Failure(failed);
+    return d;
+  };
+  text_attribute(file, "format", kFormatName);
+  const std::uint64_t n_axes = axes.size();
+  attribute(file, "axes", H5T_NATIVE_UINT64, &n_axes);
+  {
+    const Handle group(H5Gcreate2(file, "axes", H5P_DEFAULT, group_create, H5P_DEFAULT), H5Gclose);
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      std::vector<double> values;
+      for (std::size_t i = 0; i < axes[k].count; ++i) values.push_back(axes[k].value(i));
+      const Handle d(dataset(group, std::to_string(k).c_str(), H5T_IEEE_F64LE, values.size()), H5Dclose);
+      check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), failed);
+      text_attribute(d, "key", axes[k].key);
+      const std::uint64_t count = axes[k].count;
+      attribute(d, "start", H5T_NATIVE_DOUBLE, &axes[k].start);
+      attribute(d, "stop", H5T_NATIVE_DOUBLE, &axes[k].stop);
+      attribute(d, "count", H5T_NATIVE_UINT64, &count);
+    }
+  }
+  const Handle certificates(certificate_type(), H5Tclose);
+  std::vector<std::string> names(std::begin(kVerdictColumns), std::end(kVerdictColumns));
+  names.emplace_back("lyapunov_certificate");
+  if (nonlinear) names.emplace_back("nonlinear");
+  std::vector<hid_t> columns;
+  struct CloseAll {
+    std::vector<hid_t>& ids;
+    ~CloseAll() {
+      for (hid_t id : ids) H5Dclose(id);
+    }
+  } close_all{columns};
+  for (const auto& n : names) {
+    columns.push_back(dataset(file, n.c_str(), n == "lyapunov_certificate" ? hid_t(certificates) : H5T_STD_U8LE, size));
+    std::string shape;
+    for (const auto& a : axes) shape += fmt::format("{}{}", shape.empty() ? "" : " ", a.count);
+    text_attribute(columns.back(), "grid_shape", shape);
+  }
+  std::vector<std::uint8_t> buffer;
+  for (std::size_t begin = 0; begin < points; begin += kRowsPerBlock) {
+    const std::size_t end = std::min(points, begin + kRowsPerBlock);
+    const std::vector<SweepVerdict> verdicts = source(begin, end);
+    if (verdicts.size() != end - begin) throw Failure(failed);
+    const hsize_t start = begin, count = end - begin;
+    const Handle memory(H5Screate_simple(1, &count, nullptr), H5Sclose);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      buffer.resize(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        const SweepVerdict& v = verdicts[i];
+        buffer[i] = c < 3 ? v.linear[c] : c == 3 ? v.lyapunov : c == 4 ? std::uint8_t(v.lyapunov_certificate)
+                                                                        : std::uint8_t(v.nonlinear.value_or(false));
+      }
+      const Handle file_space(H5Dget_space(columns[c]), H5Sclose);
+      check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &start, nullptr, &count, nullptr), failed);
+      check(H5Dwrite(columns[c], c == 4 ? hid_t(certificates) : H5T_NATIVE_UINT8, memory, file_space, H5P_DEFAULT,
+                     buffer.data()),
+            failed);
+    }
+  }
+  check(H5Fflush(file, H5F_SCOPE_LOCAL), failed);
+}
+
+StabilityMap read_map(const std::string& path, const std::string& key) {
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
+    char magic[4] = {};
+    probe.read(magic, 4);
+    if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
+  }
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const std::string bad = fmt::format("'{}' is not a heavytop map file", path);
+  const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (file < 0) throw InvalidInput(key, bad + " (HDF5 cannot open it)");
+  auto read_attribute = [&](hid_t on, const char* name, hid_t type, void* value) {
+    const Handle a(H5Aopen(on, name, H5P_DEFAULT), H5Aclose);
+    if (a < 0 || H5Aread(a, type, value) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+  };
+  auto read_text = [&](hid_t on, const char* name) {
+    const Handle a(H5Aopen(on, name, H5P_DEFAULT), H5Aclose);
+    if (a < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle type(H5Aget_type(a), H5Tclose);
+    std::string value(H5Tget_size(type), '\0');
+    if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0 || H5Aread(a, type, value.data()) < 0)
+      throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    return value.substr(0, value.find('\0'));
+  };
+  if (read_text(file, "format") != kFormatName) throw InvalidInput(key, bad + " (its format attribute)");
+  std::uint64_t n_axes = 0;
+  read_attribute(file, "axes", H5T_NATIVE_UINT64, &n_axes);
+  if (n_axes < 1 || n_axes > kMaxSweepAxes) throw InvalidInput(key, bad + " (1 to 3 axes)");
+  auto read_column = [&](const std::string& name, hid_t memory_type, std::size_t expected, auto& out) {
+    const Handle d(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+    if (d < 0) throw InvalidInput(key, fmt::format("{} (no dataset '{}')", bad, name));
+    const Handle space(H5Dget_space(d), H5Sclose);
+    if (H5Sget_simple_extent_ndims(space) != 1 || H5Sget_simple_extent_npoints(space) != hssize_t(expected))
+      throw InvalidInput(key, fmt::format("{} (dataset '{}' must have {} elements)", bad, name, expected));
+    out.resize(expected);
+    if (H5Dread(d, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      throw InvalidInput(key, fmt::format("{} (dataset '{}' cannot be read)", bad, name));
+  };
+  StabilityMap map;
+  std::size_t points = 1;
+  for (std::uint64_t k = 0; k < n_axes; ++k) {
+    const std::string name = fmt::format("axes/{}", k);
+    const Handle d(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+    if (d < 0) throw InvalidInput(key, fmt::format("{} (no dataset '{}')", bad, name));
+    std::uint64_t count = 0;
+    read_attribute(d, "count", H5T_NATIVE_UINT64, &count);
+    if (count < 1 || count > kMaxSweepPoints) throw InvalidInput(key, bad + " (an axis' count)");
+    MapAxis axis{.key = read_text(d, "key"), .values = {}};
+    read_column(name, H5T_NATIVE_DOUBLE, count, axis.values);
+    points *= count;
+    if (points > kMaxSweepPoints) throw InvalidInput(key, bad + " (too many points)");
+    map.axes.push_back(std::move(axis));
+  }
+  const Handle nonlinear_set(H5Dopen2(file, "nonlinear", H5P_DEFAULT), H5Dclose);
+  map.nonlinear = nonlinear_set >= 0;
+  std::vector<std::uint8_t> column;
+  map.verdicts.resize(points);
+  const Handle certificates(certificate_type(), H5Tclose);
+  for (std::size_t c = 0; c < 5u + map.nonlinear; ++c) {
+    const std::string name = c < 4 ? std::string(kVerdictColumns[c]) : c == 4 ? "lyapunov_certificate" : "nonlinear";
+    read_column(name, c == 4 ? hid_t(certificates) : H5T_NATIVE_UINT8, points, column);
+    for (std::size_t i = 0; i < points; ++i) {
+      if (column[i] > (c == 4 ? std::uint8_t(LyapunovCertificate::None) : 1))
+        throw InvalidInput(key, fmt::format("{} (dataset '{}': a value out of range)", bad, name));
+      SweepVerdict& v = map.verdicts[i];
+      if (c < 3) v.linear[c] = column[i];
+      else if (c == 3) v.lyapunov = column[i];
+      else if (c == 4) v.lyapunov_certificate = static_cast<LyapunovCertificate>(column[i]);
+      else v.nonlinear = column[i] == 1;
+    }
+  }
+  return map;
+}
+#endif
+
+}  // namespace heavytop::io
