@@ -27,6 +27,7 @@ namespace {
 struct SweepSettings {
   std::vector<std::string> vary;
   std::string model;
+  std::string integrator = "auto";
   SweepOptions options;
 };
 
@@ -38,7 +39,8 @@ std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, co
                               b.gravity, b.length, s.spin, s.theta0, s.phi0, s.theta_rate0, s.phi_rate0);
   for (const auto& a : axes) f += fmt::format(" vary {}={}:{}:{}", a.key, a.start, a.stop, a.count);
   if (o.nonlinear)
-    f += fmt::format(" nonlinear {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol);
+    f += fmt::format(" nonlinear {} {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol,
+                     name(o.nonlinear_integrator));
   if (in.format() != "csv") f += " format " + in.format();
   return f + "\n";
 }
@@ -90,6 +92,10 @@ Action add_sweep_command(CLI::App& app) {
       ->check(CLI::IsMember({"nonlinear"}));
   cmd->add_option("--horizon", s->options.horizon, "s, simulated time of each nonlinear run")->default_str("100");
   cmd->add_option("--max-tilt", s->options.max_tilt, "rad, a nonlinear run is stable if its tilt stays below")->default_str("0.5");
+  cmd->add_option("--integrator", s->integrator,
+                  "nonlinear: auto (batched Taylor series, the default), taylor (the same), dopri5 or dop853 (one point at a time)")
+      ->check(CLI::IsMember({"auto", "taylor", "dopri5", "dop853"}))
+      ->default_str("auto");
   cmd->add_option("--rtol", s->options.integrator.rtol, "nonlinear: relative tolerance per step");
   cmd->add_option("--atol", s->options.integrator.atol, "nonlinear: absolute tolerance per step");
   cmd->add_option("--max-steps", s->options.integrator.max_steps,
@@ -100,6 +106,7 @@ Action add_sweep_command(CLI::App& app) {
     std::vector<SweepAxis> axes;
     for (const auto& v : s->vary) axes.push_back(parse_sweep_axis(v));
     s->options.nonlinear = s->model == "nonlinear";
+    s->options.nonlinear_integrator = *integrator_from_name(s->integrator);
     validate_sweep(inputs->body(), inputs->state(), axes, s->options);
     const bool hdf5 = inputs->format() == "hdf5";
     if (hdf5 && !io::hdf5_available())

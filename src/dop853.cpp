@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
+#include <boost/math/tools/toms748_solve.hpp>
 #include <fmt/format.h>
 
 #include "heavytop/rigid_body.hpp"
@@ -44,6 +46,7 @@ class Dop853 {
   }
 
   double time() const { return t_; }
+  double previous_time() const { return t_old_; }
 
   void step() {
     normalise();
@@ -227,7 +230,100 @@ class Dop853 {
 };
 
 
+// Tilt acos(k_zeta) and d(k_zeta)/dt of the plain state: k_zeta = gamma_3, with gamma = R(q)^T
+// e_zeta in body axes and gamma' = gamma x w, so d(gamma_3)/dt = gamma_1 w2 - gamma_2 w1.
+struct TiltOf {
+  double g1, g2, g3;
+  explicit TiltOf(const State& x) {
+    const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
+    const double inv = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+    g1 = 2.0 * (qx * qz - qw * qy) * inv, g2 = 2.0 * (qy * qz + qw * qx) * inv;
+    g3 = (qw * qw - qx * qx - qy * qy + qz * qz) * inv;
+  }
+  double tilt() const { return std::atan2(std::hypot(g1, g2), g3); }
+  double rate(const State& x) const { return g1 * x[5] - g2 * x[4]; }
+};
+
+// nonlinear.cpp's scan_tilt on DOP853's dense output: extrema at the roots of d(k_zeta)/dt,
+// the crossing of stop_above located by TOMS 748.
+TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
+                       const NonlinearOptions& options) {
+  TiltExtremes e;
+  e.min_tilt = e.max_tilt = TiltOf(x0).tilt();
+  e.exceeded = e.max_tilt > stop_above;
+  if (e.exceeded || horizon == 0.0) return e;
+  Dop853 integrator(body, x0, horizon, options, nullptr);
+  auto note = [&](double t, const State& x) {
+    const double tilt = TiltOf(x).tilt();
+    if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
+    if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
+    return tilt > stop_above;
+  };
+  State y;
+  auto stop_at_crossing = [&](double t0, double t_hi) {
+    auto excess = [&](double t) {
+      integrator.interpolate(t, y);
+      return TiltOf(y).tilt() - stop_above;
+    };
+    const double below = excess(t0), above = excess(t_hi);
+    double t_cross = t0;
+    if (below < 0.0 && above > 0.0) {
+      std::uintmax_t iterations = 100;
+      const double width = t_hi - t0;
+      t_cross = boost::math::tools::toms748_solve(
+                    excess, t0, t_hi, below, above,
+                    [width](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * width; }, iterations)
+                    .second;
+    }
+    integrator.interpolate(t_cross, y);
+    e.exceeded = true;
+    e.t_end = t_cross;
+    e.spin_at_end = y[6];
+    return e;
+  };
+  double rate_old = TiltOf(x0).rate(x0);
+  State x;
+  while (integrator.time() < horizon) {
+    integrator.step();
+    const double t0 = integrator.previous_time(), t1 = std::min(integrator.time(), horizon);
+    integrator.interpolate(t1, x);
+    const double rate_new = TiltOf(x).rate(x);
+    if ((rate_old < 0.0 && rate_new > 0.0) || (rate_old > 0.0 && rate_new < 0.0)) {
+      auto rate_at = [&](double t) {
+        integrator.interpolate(t, y);
+        return TiltOf(y).rate(y);
+      };
+      const double width = t1 - t0;
+      std::uintmax_t iterations = 60;
+      const auto bracket = boost::math::tools::toms748_solve(
+          rate_at, t0, t1, rate_old, rate_new,
+          [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
+      const double tr = 0.5 * (bracket.first + bracket.second);
+      integrator.interpolate(tr, y);
+      if (note(tr, y)) return stop_at_crossing(t0, tr);
+    }
+    if (note(t1, x)) return stop_at_crossing(t0, t1);
+    rate_old = rate_new;
+  }
+  e.t_end = horizon;
+  integrator.interpolate(std::min(integrator.time(), horizon), x);
+  e.spin_at_end = x[6];
+  return e;
+}
+
 }  // namespace
+
+TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial, double horizon, double stop_above,
+                                  const NonlinearOptions& options) {
+  validate(body);
+  refuse_general(body, "dop853 (use dopri5 or auto)");
+  detail::refuse_damping(body, "dop853");
+  validate(initial);
+  validate(options);
+  if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
+  if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
+  return scan_tilt(body, to_vector(initial_rigid_body_state(initial)), horizon, stop_above, options);
+}
 
 void detail::stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
                            const NonlinearOptions& options, NonlinearSummary* summary) {

@@ -1,6 +1,10 @@
 #include "heavytop/sweep.hpp"
 
+#include "heavytop/batch.hpp"
+#include "heavytop/dop853.hpp"
 #include "heavytop/lyapunov.hpp"
+#include "heavytop/simulate.hpp"
+#include "heavytop/taylor.hpp"
 
 #include "heavytop/frames.hpp"
 
@@ -17,6 +21,8 @@
 #include "heavytop/stability.hpp"
 #include "heavytop/units.hpp"
 
+#include "detail/integration.hpp"
+
 namespace heavytop {
 namespace {
 
@@ -29,6 +35,41 @@ double parse_number(std::string_view text, const char* what) {
     throw InvalidInput("vary", fmt::format("{} '{}' must be a finite number", what, text));
   return value;
 }
+
+// ---- The nonlinear verdict (issue 14: batched) ----
+
+// True if the point goes to the batched Taylor integrator (batch.hpp): with auto or taylor, a
+// conservative body on principal axes. Damped and general bodies, and dopri5 or dop853, go
+// one point at a time.
+bool batched(const SweepOptions& o, const Body& body) {
+  return (o.nonlinear_integrator == Integrator::Auto || o.nonlinear_integrator == Integrator::Taylor) && batchable(body);
+}
+
+// One point's verdict with the integrator asked for (auto: choose_integrator's for a body
+// the batch does not take, i.e. dopri5). Taylor's max_tilt at a crossing is the crossing's
+// tilt itself (== max_tilt to rounding), hence `exceeded`, not a comparison.
+bool sweep_tilt_verdict(const Body& body, const InitialState& state, const SweepOptions& o) {
+  const Integrator chosen = o.nonlinear_integrator == Integrator::Auto ? choose_integrator(body, o.integrator) : o.nonlinear_integrator;
+  if (chosen == Integrator::Taylor)
+    return !taylor_tilt_extremes(body, state, o.horizon, o.max_tilt, o.integrator).exceeded;
+  if (chosen == Integrator::Dop853)
+    return !dop853_tilt_extremes(body, state, o.horizon, o.max_tilt, o.integrator).exceeded;
+  return max_tilt(body, state, o.horizon, o.max_tilt, o.integrator) <= o.max_tilt;
+}
+
+struct SweepBatch {
+  std::vector<Body> bodies;
+  std::vector<InitialState> states;
+  std::vector<std::size_t> slots;  // their places in the block's output
+  std::vector<TiltVerdict> results;
+
+  void clear() { bodies.clear(), states.clear(), slots.clear(); }
+  void judge(const SweepOptions& o, std::vector<SweepVerdict>& out) {
+    results.resize(bodies.size());
+    batch_tilt_verdicts(bodies, states, o.horizon, o.max_tilt, o.integrator, results);
+    for (std::size_t k = 0; k < slots.size(); ++k) out[slots[k]].nonlinear = !results[k].exceeded;
+  }
+};
 
 }  // namespace
 
@@ -118,6 +159,8 @@ bool SweepOptions::IsValid(std::string* why) const {
   };
   if (!(std::isfinite(horizon) && horizon > 0.0)) return fail("horizon: must be finite and > 0");
   if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI)) return fail("max_tilt: must be in (0, pi] rad");
+  if (nonlinear_integrator == Integrator::Splitting)
+    return fail("integrator: must be auto, taylor, dop853 or dopri5 (the splitting has no error control to judge a point by)");
   return integrator.IsValid(why);
 }
 
@@ -163,6 +206,9 @@ void validate_sweep(const Body& base, const InitialState& base_state,
       throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. theta0 = 1e-3): the upright body never moves");
     if (start_tilt >= options.max_tilt)
       throw InvalidInput("max_tilt", "must exceed the initial tilt");
+    // Taylor and DOP853 hold no torques of SPEC section 6 (the grid varies none of them).
+    if (options.nonlinear_integrator == Integrator::Taylor) detail::refuse_damping(base, "taylor");
+    if (options.nonlinear_integrator == Integrator::Dop853) detail::refuse_damping(base, "dop853");
   }
 }
 
@@ -213,9 +259,14 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
   // its own slot, so the result does not depend on the threads. Threads end with the call
   // (no pool left spinning while the caller writes the rows).
   std::atomic<std::size_t> next{0};
-  constexpr std::size_t kBlock = 16;
+  const std::size_t cores = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  // A nonlinear point costs far more than the rest and is batched: blocks of up to 64 keep the
+  // lanes full, but every thread gets about 8 blocks (a call may be as small as 8 points).
+  const std::size_t kBlock = !options.nonlinear ? 16 : cores == 1 ? 64 : std::clamp<std::size_t>(out.size() / (8 * cores), 8, 64);
   auto work = [&] {
+    SweepBatch batch;  // this block's nonlinear points that the batched Taylor integrator takes
     for (std::size_t first; (first = next.fetch_add(kBlock)) < out.size();) {
+      batch.clear();
       for (std::size_t i = first; i < std::min(out.size(), first + kBlock); ++i) {
         try {
           Body body = base;
@@ -227,17 +278,23 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
           const LyapunovVerdict lyapunov = lyapunov_stability(body, state.spin);
           v.lyapunov = lyapunov.verdict == LyapunovVerdictKind::Stable;
           v.lyapunov_certificate = lyapunov.certificate;
-          if (options.nonlinear)
-            v.nonlinear = max_tilt(body, state, options.horizon, options.max_tilt, options.integrator) <= options.max_tilt;
+          if (options.nonlinear && batched(options, body)) {
+            batch.bodies.push_back(body), batch.states.push_back(state), batch.slots.push_back(i);
+          } else if (options.nonlinear) {
+            v.nonlinear = sweep_tilt_verdict(body, state, options);
+          }
         } catch (...) {
           std::call_once(failed, [&] { failure = std::current_exception(); });
         }
       }
+      try {
+        batch.judge(options, out);
+      } catch (...) {
+        std::call_once(failed, [&] { failure = std::current_exception(); });
+      }
     }
   };
-  const std::size_t threads = std::min<std::size_t>(
-      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency()),
-      (out.size() + kBlock - 1) / kBlock);
+  const std::size_t threads = std::min<std::size_t>(cores, (out.size() + kBlock - 1) / kBlock);
   {
     std::vector<std::jthread> pool;
     for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);

@@ -15,6 +15,7 @@
 #include "heavytop/body.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/nonlinear.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop {
@@ -65,6 +66,12 @@ struct SweepOptions {
   double horizon = 100.0;       ///< s, simulated time of each nonlinear run (> 0)
   double max_tilt = 0.5;        ///< rad, the nonlinear run is "stable" if its tilt stays <= this
   NonlinearOptions integrator;  ///< tolerances of the nonlinear runs
+  /// How the nonlinear runs are integrated (CLI --integrator): Auto and Taylor run the
+  /// conservative principal-axes bodies through the batched Taylor integrator (batch.hpp,
+  /// bit-identical to the unbatched one), Adaptive (dopri5) and Dop853 one point at a time;
+  /// a damped or general body always takes choose_integrator()'s (dopri5) one point at a time
+  /// under Auto (Taylor and Dop853 refuse it, key "integrator"). Splitting is refused.
+  Integrator nonlinear_integrator = Integrator::Auto;
   unsigned threads = 0;         ///< worker threads; 0: one per core
 
   /// True if every setting is in range; else false with a one-line "key: rule" in `why`.

@@ -23,6 +23,7 @@ __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "d
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
 IntegratorName = Literal["auto", "taylor", "dop853", "dopri5", "adaptive", "splitting"]
+SweepIntegratorName = Literal["auto", "taylor", "dop853", "dopri5", "adaptive"]
 DeriveMethod = Literal["euler-moving", "euler-fixed", "euler-body", "lagrange"]
 Sequence = Literal["phi-theta", "theta-phi"]
 
@@ -165,7 +166,8 @@ def compare(body: Body, *, spin: Optional[float] = None, spin_rpm: Optional[floa
 def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, theta0: float = 0.0,
           phi0: float = 0.0, theta_rate0: float = 0.0, phi_rate0: float = 0.0, nonlinear: bool = False,
           horizon: float = 100.0, max_tilt: float = 0.5, rtol: Optional[float] = None,
-          atol: Optional[float] = None) -> StabilityMap:
+          atol: Optional[float] = None,
+          integrator: Optional[SweepIntegratorName] = None) -> StabilityMap:
     """A stability map: each model's verdict over a grid of one, two or three parameters.
 
     The computation of `heavytop sweep --vary KEY=START:STOP:COUNT [--vary ...]`, in C++ on every
@@ -184,6 +186,9 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
         max_tilt    rad, a nonlinear run is stable if its tilt stays <= this
                     (default 0.5)                                                [--max-tilt]
         rtol, atol  nonlinear: tolerances per step (default 1e-12)              [--rtol, --atol]
+        integrator  nonlinear: "auto" (the default: the Taylor integrator on several
+                    points at a time, docs/integrators.md "Batched sweeps") | "taylor"
+                    (the same) | "dopri5" | "dop853" (one point at a time)      [--integrator]
 
     Returns a StabilityMap, one array per CSV column, one element per grid point (row-major, the
     first key slowest): each key's values (float64), then "first-order", "body-fixed",
@@ -205,7 +210,7 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
         vary = dict(vary)
     columns = _core.sweep(body, vary, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                           phi_rate0=phi_rate0, nonlinear=nonlinear, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
-                          atol=atol)
+                          atol=atol, integrator=integrator)
     shape = tuple(int(np.size(values)) for values in vary.values())  # checked by the core: 1-D arrays
     return StabilityMap(columns, shape)
 

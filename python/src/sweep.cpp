@@ -13,6 +13,7 @@
 #include "heavytop/io/map_file.hpp"
 #include "heavytop/linear_models.hpp"
 #include "heavytop/lyapunov.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/sweep.hpp"
 #include "interrupt.hpp"
 
@@ -119,7 +120,8 @@ py::dict map_columns(const StabilityMap& map) {
 
 py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta0, double phi0,
                double theta_rate0, double phi_rate0, bool nonlinear, double horizon, double max_tilt,
-               std::optional<double> rtol, std::optional<double> atol) {
+               std::optional<double> rtol, std::optional<double> atol,
+               const std::optional<std::string>& integrator) {
   validate(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   const std::vector<VariedKey> keys = varied_keys(vary);
@@ -128,6 +130,11 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
   options.horizon = horizon;
   options.max_tilt = max_tilt;
   options.integrator = tolerances(rtol, atol);
+  // The command line's --integrator: auto (batched Taylor) unless asked.
+  const auto chosen = integrator_from_name(integrator.value_or("auto"));
+  if (!chosen || *chosen == Integrator::Splitting)
+    throw InvalidInput("integrator", "must be auto, taylor, dopri5 (adaptive) or dop853");
+  options.nonlinear_integrator = *chosen;
 
   // When every array is the command line's START:STOP:COUNT grid (bit for bit), its very calls.
   std::vector<SweepAxis> axes(keys.size());
@@ -191,7 +198,7 @@ py::array_t<double> grid_values(double start, double stop, long long count) {
 void bind_sweep(py::module_& m) {
   m.def("sweep", &sweep, docs::kCoreSweep, "body"_a, "vary"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
         "theta_rate0"_a, "phi_rate0"_a, "nonlinear"_a, "horizon"_a, "max_tilt"_a, "rtol"_a = py::none(),
-        "atol"_a = py::none());
+        "atol"_a = py::none(), "integrator"_a = py::none());
   m.def("read_map", &read_map, docs::kCoreReadMap, "path"_a);
   m.def("grid_values", &grid_values, docs::kGridValues, "start"_a, "stop"_a, "count"_a);
 }

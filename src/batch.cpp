@@ -1,0 +1,172 @@
+#include "heavytop/batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <fmt/format.h>
+
+#include "heavytop/frames.hpp"
+#include "heavytop/rigid_body.hpp"
+#include "heavytop/taylor.hpp"
+
+#include "detail/batch.hpp"
+#include "detail/integration.hpp"
+
+namespace heavytop {
+
+static_assert(detail::kBatchMaxOrder == kTaylorMaxOrder, "the batch kernel's jet must hold the Taylor orders");
+
+// ---- Helpers the kernels call (baseline code) ---------------------------------------------------
+
+double detail::series_root(const double* s, int p, double a, double b, double fa, double fb, double h) {
+  // taylor.cpp's polynomial_root, to the same tolerance, so the roots are its roots.
+  auto value = [&](double tau) {
+    double v = s[p];
+    for (int n = p - 1; n >= 0; --n) v = v * tau + s[n];
+    return v;
+  };
+  std::uintmax_t iterations = 100;
+  const auto bracket = boost::math::tools::toms748_solve(
+      value, a, b, fa, fb, [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+void detail::fail_max_steps(std::size_t max_steps, double t) {
+  throw std::runtime_error(fmt::format(
+      "taylor: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
+      "loosen rtol/atol)", max_steps, t));
+}
+
+void detail::fail_underflow(double t) {
+  throw std::runtime_error(
+      fmt::format("taylor: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t));
+}
+
+void detail::fail_not_finite(double t) {
+  throw std::runtime_error(fmt::format("taylor: the state stopped being finite at t = {:.6g} s", t));
+}
+
+// ---- Instruction sets ---------------------------------------------------------------------------
+
+bool batch_isa_supported(BatchIsa isa) {
+  switch (isa) {
+    case BatchIsa::Sse2: return true;  // the x86-64 baseline
+    case BatchIsa::Avx2: return __builtin_cpu_supports("avx2");
+    case BatchIsa::Avx512: return __builtin_cpu_supports("avx512f");
+  }
+  return false;
+}
+
+BatchIsa best_batch_isa() {
+  static const BatchIsa best = batch_isa_supported(BatchIsa::Avx512) ? BatchIsa::Avx512
+                               : batch_isa_supported(BatchIsa::Avx2) ? BatchIsa::Avx2
+                                                                      : BatchIsa::Sse2;
+  return best;
+}
+
+std::size_t batch_lanes(BatchIsa isa) {
+  switch (isa) {
+    case BatchIsa::Sse2: return 2;
+    case BatchIsa::Avx2: return 4;
+    case BatchIsa::Avx512: return 8;
+  }
+  return 1;
+}
+
+const char* name(BatchIsa isa) {
+  switch (isa) {
+    case BatchIsa::Sse2: return "sse2";
+    case BatchIsa::Avx2: return "avx2";
+    case BatchIsa::Avx512: return "avx512";
+  }
+  return "?";
+}
+
+bool batchable(const Body& body) noexcept { return body.damping.conservative() && !is_general(body); }
+
+// ---- The batch ----------------------------------------------------------------------------------
+
+namespace {
+
+// Both entry points: validation as taylor_tilt_extremes() does it, the two groups of
+// variables, the kernel of `isa`; results into `results` (grid order).
+void scan(std::span<const Body> bodies, std::span<const InitialState> initials, std::size_t outputs, double horizon,
+          double stop_above, const NonlinearOptions& options, BatchIsa isa, bool extremes,
+          std::vector<detail::BatchResult>& results) {
+  if (bodies.size() != initials.size() || bodies.size() != outputs)
+    throw InvalidInput("bodies", "bodies, initial states and results must be as many");
+  if (!batch_isa_supported(isa))
+    throw InvalidInput("isa", fmt::format("this processor does not run {}", name(isa)));
+  validate(options);
+  if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
+  if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
+
+  // The two sets of variables of taylor.hpp, each batched on its own.
+  std::vector<detail::BatchPoint> symmetric, plain;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    validate(b);
+    refuse_general(b, "the Taylor integrator (use dopri5 or auto)");
+    detail::refuse_damping(b, "taylor");
+    validate(initials[i]);
+    detail::BatchPoint point;
+    point.index = i;
+    const RigidBodyVector x0 = to_vector(initial_rigid_body_state(initials[i]));
+    std::copy(x0.begin(), x0.end(), point.x0);
+    const double qw = point.x0[0], qx = point.x0[1], qy = point.x0[2], qz = point.x0[3];
+    const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
+    point.tilt0 = std::atan2(std::hypot(g1, g2), qw * qw - qx * qx - qy * qy + qz * qz);
+    const double mgr = b.mgR();
+    point.e1 = (b.B - b.C) / b.A, point.e2 = (b.C - b.A) / b.B, point.e3 = (b.A - b.B) / b.C;
+    point.ka = mgr / b.A, point.kb = mgr / b.B;
+    point.c_over_a = b.C / b.A;
+    (b.A == b.B ? symmetric : plain).push_back(point);
+  }
+  const detail::BatchSettings settings{taylor_order(options), options.rtol, options.atol, horizon, stop_above,
+                                       options.max_steps, extremes};
+  auto kernel = isa == BatchIsa::Avx512 ? detail::batch_scan_avx512
+                : isa == BatchIsa::Avx2 ? detail::batch_scan_avx2
+                                        : detail::batch_scan_sse2;
+  results.resize(bodies.size());
+  if (!symmetric.empty()) kernel(true, symmetric.data(), symmetric.size(), settings, results.data());
+  if (!plain.empty()) kernel(false, plain.data(), plain.size(), settings, results.data());
+}
+
+}  // namespace
+
+void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out) {
+  batch_tilt_extremes(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
+}
+
+void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out,
+                         BatchIsa isa) {
+  std::vector<detail::BatchResult> results;
+  scan(bodies, initials, out.size(), horizon, stop_above, options, isa, true, results);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const detail::BatchResult& r = results[i];
+    out[i] = TiltExtremes{};  // spin_at_end 0, as taylor_tilt_extremes leaves it
+    out[i].min_tilt = r.min_tilt, out[i].t_min = r.t_min, out[i].max_tilt = r.max_tilt, out[i].t_max = r.t_max;
+    out[i].t_end = r.t_end, out[i].exceeded = r.exceeded;
+  }
+}
+
+void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltVerdict> out) {
+  batch_tilt_verdicts(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
+}
+
+void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                         double stop_above, const NonlinearOptions& options, std::span<TiltVerdict> out,
+                         BatchIsa isa) {
+  std::vector<detail::BatchResult> results;
+  scan(bodies, initials, out.size(), horizon, stop_above, options, isa, false, results);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = TiltVerdict{results[i].exceeded, results[i].t_end};
+}
+
+}  // namespace heavytop
