@@ -115,8 +115,10 @@ Action add_sweep_command(CLI::App& app) {
     const SweepDistribution& distribution = sweep_distribution();
     s->options.threads = distribution.threads();
     const std::size_t total = grid_size(axes);
-    // Blocks of grid order: each computed in parallel, then appended whole.
-    const std::size_t block = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 8 : 256, 20000);
+    // Blocks of grid order: each computed in parallel, then appended whole. At least 128
+    // nonlinear points, so that every core gets several batches of SIMD lanes (with 8 points a
+    // block was one batch: one core of two busy).
+    const std::size_t block = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 128 : 256, 20000);
     const ComputeBlock compute = [&](std::size_t begin, std::size_t end) {
       return sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, begin, end);
     };
