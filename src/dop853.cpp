@@ -13,6 +13,7 @@
 
 #include "detail/dop853_tableau.hpp"
 #include "detail/integration.hpp"
+#include "detail/tilt_scan.hpp"
 #include "detail/streams.hpp"
 
 namespace heavytop {
@@ -253,62 +254,9 @@ TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double
   e.exceeded = e.max_tilt > stop_above;
   if (e.exceeded || horizon == 0.0) return e;
   Dop853 integrator(body, x0, horizon, options, nullptr);
-  auto note = [&](double t, const State& x) {
-    const double tilt = TiltOf(x).tilt();
-    if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
-    if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
-    return tilt > stop_above;
-  };
-  State y;
-  auto stop_at_crossing = [&](double t0, double t_hi) {
-    auto excess = [&](double t) {
-      integrator.interpolate(t, y);
-      return TiltOf(y).tilt() - stop_above;
-    };
-    const double below = excess(t0), above = excess(t_hi);
-    double t_cross = t0;
-    if (below < 0.0 && above > 0.0) {
-      std::uintmax_t iterations = 100;
-      const double width = t_hi - t0;
-      t_cross = boost::math::tools::toms748_solve(
-                    excess, t0, t_hi, below, above,
-                    [width](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * width; }, iterations)
-                    .second;
-    }
-    integrator.interpolate(t_cross, y);
-    e.exceeded = true;
-    e.t_end = t_cross;
-    e.spin_at_end = y[6];
-    return e;
-  };
-  double rate_old = TiltOf(x0).rate(x0);
-  State x;
-  while (integrator.time() < horizon) {
-    integrator.step();
-    const double t0 = integrator.previous_time(), t1 = std::min(integrator.time(), horizon);
-    integrator.interpolate(t1, x);
-    const double rate_new = TiltOf(x).rate(x);
-    if ((rate_old < 0.0 && rate_new > 0.0) || (rate_old > 0.0 && rate_new < 0.0)) {
-      auto rate_at = [&](double t) {
-        integrator.interpolate(t, y);
-        return TiltOf(y).rate(y);
-      };
-      const double width = t1 - t0;
-      std::uintmax_t iterations = 60;
-      const auto bracket = boost::math::tools::toms748_solve(
-          rate_at, t0, t1, rate_old, rate_new,
-          [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
-      const double tr = 0.5 * (bracket.first + bracket.second);
-      integrator.interpolate(tr, y);
-      if (note(tr, y)) return stop_at_crossing(t0, tr);
-    }
-    if (note(t1, x)) return stop_at_crossing(t0, t1);
-    rate_old = rate_new;
-  }
-  e.t_end = horizon;
-  integrator.interpolate(std::min(integrator.time(), horizon), x);
-  e.spin_at_end = x[6];
-  return e;
+  return detail::scan_tilt_extremes(
+      integrator, x0, horizon, stop_above, [](const State& x) { return TiltOf(x).tilt(); },
+      [](const State& x) { return TiltOf(x).rate(x); }, [](const State& x) { return x[6]; });
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "detail/integration.hpp"
+#include "detail/tilt_scan.hpp"
 #include "detail/streams.hpp"
 
 namespace heavytop {
@@ -509,71 +510,9 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
   if (e.exceeded || horizon == 0.0) return e;
 
   Integrator<Symmetric, Damped> integrator(body, x0, horizon, options, summary);
-  auto note = [&](double t, const State& x) {
-    const double tilt = tilt_of(x);
-    if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
-    if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
-    return tilt > stop_above;
-  };
-
-  // The first time in [t0, t_hi] the tilt passes stop_above (it is below at t0), located on
-  // the dense output: where the scan ends.
-  auto stop_at_crossing = [&](double t0, double t_hi) {
-    State y;
-    auto excess = [&](double t) {
-      integrator.interpolate(t, y);
-      return tilt_of(y) - stop_above;
-    };
-    const double below = excess(t0), above = excess(t_hi);
-    double t_cross = t0;
-    if (below < 0.0 && above > 0.0) {
-      std::uintmax_t iterations = 100;
-      const double width = t_hi - t0;
-      t_cross = boost::math::tools::toms748_solve(
-                    excess, t0, t_hi, below, above,
-                    [width](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * width; }, iterations)
-                    .second;
-    }
-    integrator.interpolate(t_cross, y);
-    e.exceeded = true;
-    e.t_end = t_cross;
-    e.spin_at_end = y[kW3];
-    return e;
-  };
-
-  double rate_old = tilt_cos_rate(x0);
-  State x;
-  for (std::size_t steps = 1; integrator.time() < horizon; ++steps) {
-    integrator.step();
-    if (options.progress && steps % kStepsPerProgress == 0) options.progress(std::min(integrator.time(), horizon));
-    const double t0 = integrator.previous_time();
-    const double t1 = std::min(integrator.time(), horizon);
-    integrator.interpolate(t1, x);
-    const double rate_new = tilt_cos_rate(x);
-    // A sign change of d(k_zeta)/dt inside the step is an extremum of the tilt: find it on
-    // the dense output (its time to ~1e-12 of the step; the tilt error is quadratic in it).
-    if ((rate_old < 0.0 && rate_new > 0.0) || (rate_old > 0.0 && rate_new < 0.0)) {
-      State y;
-      auto rate_at = [&](double t) {
-        integrator.interpolate(t, y);
-        return tilt_cos_rate(y);
-      };
-      const double width = t1 - t0;
-      std::uintmax_t iterations = 60;
-      const auto bracket = boost::math::tools::toms748_solve(
-          rate_at, t0, t1, rate_old, rate_new,
-          [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
-      const double tr = 0.5 * (bracket.first + bracket.second);
-      integrator.interpolate(tr, y);
-      if (note(tr, y)) return stop_at_crossing(t0, tr);
-    }
-    if (note(t1, x)) return stop_at_crossing(t0, t1);
-    rate_old = rate_new;
-  }
-  e.t_end = horizon;
-  integrator.interpolate(std::min(integrator.time(), horizon), x);
-  e.spin_at_end = x[kW3];
-  return e;
+  return detail::scan_tilt_extremes(
+      integrator, x0, horizon, stop_above, [](const State& x) { return tilt_of(x); },
+      [](const State& x) { return tilt_cos_rate(x); }, [](const State& x) { return x[kW3]; }, options.progress);
 }
 
 }  // namespace
