@@ -48,7 +48,6 @@ Action add_report_command(CLI::App& app) {
           list.remove_prefix(comma + 1);
         }
       }
-      map->heat_maps();  // bad slices are refused before anything is drawn
     } else if (!slices->empty()) {
       throw InvalidInput("--slice", "needs --map FILE");
     }

@@ -312,6 +312,8 @@ std::vector<std::pair<std::string, StabilityMap>> ReportMap::heat_maps() const {
 
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
                   const std::optional<ReportMap>& map) {
+  // A map's heat maps first: bad slices are refused before the folder is made.
+  const auto heat_maps = map ? map->heat_maps() : std::vector<std::pair<std::string, StabilityMap>>{};
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir)) throw InvalidInput("--output", fmt::format("cannot create the folder '{}'", dir));
@@ -342,10 +344,8 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   figures.push_back(plot_sweep_map(staging.path(), stability_map(axes, false, verdicts)));
   // A map file of the reader's: its heat maps (a three-key map's slices).
   std::vector<Figure> map_figures;
-  if (map)
-    for (const auto& [where, two] : map->heat_maps())
-      map_figures.push_back(
-          plot_sweep_map(staging.path(), two, fmt::format("map-{}", map_figures.size() + 1), where));
+  for (const auto& [where, two] : heat_maps)
+    map_figures.push_back(plot_sweep_map(staging.path(), two, fmt::format("map-{}", map_figures.size() + 1), where));
   // With damping: how long it stays up (SPEC section 8).
   std::optional<Lifetime> life;
   if (!body.damping.conservative()) {

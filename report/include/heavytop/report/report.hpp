@@ -32,7 +32,9 @@ struct ReportMap {
 
 /// Writes the report for `body` and `state` into folder `dir` (created if needed), the motion
 /// over `t_end` (s; default natural_horizon()), and, if given, the heat maps of `map`. Throws
-/// InvalidInput (key "--output") if the folder cannot be made, io::Failure if a figure cannot be drawn.
+/// InvalidInput (key "map" or "slice", before anything is made: ReportMap::heat_maps()) for a
+/// map it cannot draw, InvalidInput (key "--output") if the folder cannot be made, io::Failure
+/// if a figure cannot be drawn.
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
                   const std::optional<ReportMap>& map = std::nullopt);
 
