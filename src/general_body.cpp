@@ -119,26 +119,7 @@ class GeneralIntegrator {
     x_old_ = x_;
     dxdt_old_ = dxdt_;
     t_old_ = t_;
-    int rejections = 0;
-    for (;;) {
-      if (attempts_ >= max_steps_)
-        throw std::runtime_error(fmt::format("nonlinear: more than max_steps = {} integration steps before t = {:.6g} "
-                                             "s (raise max_steps or loosen rtol/atol)", max_steps_, t_));
-      if (!(t_ + dt_ > t_) || ++rejections > 100)
-        throw std::runtime_error(fmt::format(
-            "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_));
-      ++attempts_;
-      const double t_before = t_;
-      const auto result = controlled_.try_step(system_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_);
-      if (summary_) summary_->rhs_evaluations += 6;  // FSAL
-      if (result == odeint::success) {
-        if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
-          throw std::runtime_error(
-              fmt::format("nonlinear: the state stopped being finite at t = {:.6g} s", t_before));
-        break;
-      }
-      if (summary_) ++summary_->rejected_steps;
-    }
+    controlled_step(controlled_, system_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_, attempts_, max_steps_, summary_);
     if (summary_) {
       ++summary_->steps;
       summary_->final_time = t_;

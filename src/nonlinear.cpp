@@ -286,36 +286,7 @@ class Integrator {
     x_old_ = x_;
     dxdt_old_ = dxdt_;
     t_old_ = t_;
-    int rejections = 0;
-    for (;;) {
-      if (attempts_ >= max_steps_)
-        throw std::runtime_error(fmt::format(
-            "nonlinear: more than max_steps = {} integration steps before t = {:.6g} s "
-            "(raise max_steps or loosen rtol/atol)",
-            max_steps_, t_));
-      if (!(t_ + dt_ > t_))  // lost in the rounding of t (or not a number)
-        throw std::runtime_error(fmt::format(
-            "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot "
-            "be met)",
-            t_));
-      ++attempts_;
-      const double t_before = t_;
-      const auto result = controlled_.try_step(equations_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_);
-      if (summary_) summary_->rhs_evaluations += 6;  // FSAL: six new stages per attempt
-      if (result == odeint::success) {
-        if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
-          throw std::runtime_error(fmt::format(
-              "nonlinear: the state stopped being finite at t = {:.6g} s", t_before));
-        break;
-      }
-      if (summary_) ++summary_->rejected_steps;
-      // A long run of rejections: rounding, not the method, limits the error.
-      if (++rejections > kMaxConsecutiveRejections)
-        throw std::runtime_error(fmt::format(
-            "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot "
-            "be met)",
-            t_));
-    }
+    controlled_step(controlled_, equations_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_, attempts_, max_steps_, summary_);
     end_x_ = x_;
     end_dxdt_ = dxdt_;
     end_t_ = t_;
@@ -422,7 +393,6 @@ class Integrator {
     note_drift(*summary_, conserved_of_state(body_, x_, Symmetric), initial_, scales_);
   }
 
-  static constexpr int kMaxConsecutiveRejections = 100;
 
   const Body& body_;
   Equations<Symmetric, Damped> equations_;

@@ -9,10 +9,12 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -54,6 +56,44 @@ inline void validate_times(const std::vector<double>& times) {
     if (!std::isfinite(t) || t < previous)
       throw InvalidInput("times", "must be finite, >= 0 and non-decreasing");
     previous = t;
+  }
+}
+
+// ---- One step of Odeint's controlled dopri5 (nonlinear.cpp, general_body.cpp) ----------------
+
+// The most rejections in a row before a step is given up as lost in rounding.
+inline constexpr int kMaxConsecutiveRejections = 100;
+
+// One accepted step of `controlled` (Odeint's controlled_runge_kutta over dopri5, FSAL) from
+// (x_old, dxdt_old) at t into (x, dxdt), t and dt updated as try_step does. Counts attempts
+// against max_steps, and evaluations (six per attempt) and rejections into `summary` if set.
+// Fails as one line (std::runtime_error): max_steps exceeded, a step size lost in the rounding
+// of t or rejected kMaxConsecutiveRejections times running, a state no longer finite.
+template <class Controlled, class System, class State>
+void controlled_step(Controlled& controlled, System& system, const State& x_old, const State& dxdt_old, double& t,
+                     State& x, State& dxdt, double& dt, std::size_t& attempts, std::size_t max_steps,
+                     NonlinearSummary* summary) {
+  auto underflow = [&] {
+    return std::runtime_error(fmt::format(
+        "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t));
+  };
+  for (int rejections = 0;;) {
+    if (attempts >= max_steps)
+      throw std::runtime_error(fmt::format("nonlinear: more than max_steps = {} integration steps before t = {:.6g} "
+                                           "s (raise max_steps or loosen rtol/atol)", max_steps, t));
+    if (!(t + dt > t)) throw underflow();  // lost in the rounding of t (or not a number)
+    ++attempts;
+    const double t_before = t;
+    const auto result = controlled.try_step(system, x_old, dxdt_old, t, x, dxdt, dt);
+    if (summary) summary->rhs_evaluations += 6;  // FSAL: six new stages per attempt
+    if (result == boost::numeric::odeint::success) {
+      if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); }))
+        throw std::runtime_error(fmt::format("nonlinear: the state stopped being finite at t = {:.6g} s", t_before));
+      return;
+    }
+    if (summary) ++summary->rejected_steps;
+    // A long run of rejections: rounding, not the method, limits the error.
+    if (++rejections > kMaxConsecutiveRejections) throw underflow();
   }
 }
 
