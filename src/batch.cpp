@@ -126,14 +126,15 @@ void scan(std::span<const Body> bodies, std::span<const InitialState> initials, 
     point.c_over_a = b.C / b.A;
     (b.A == b.B ? symmetric : plain).push_back(point);
   }
-  const detail::BatchSettings settings{taylor_order(options), options.rtol, options.atol, horizon, stop_above,
-                                       options.max_steps, extremes};
+  detail::BatchSettings settings{taylor_order(options, TaylorVariables::Plain), options.rtol, options.atol,
+                                 horizon, stop_above, options.max_steps, extremes};
   auto kernel = isa == BatchIsa::Avx512 ? detail::batch_scan_avx512
                 : isa == BatchIsa::Avx2 ? detail::batch_scan_avx2
                                         : detail::batch_scan_sse2;
   results.resize(bodies.size());
-  if (!symmetric.empty()) kernel(true, symmetric.data(), symmetric.size(), settings, results.data());
   if (!plain.empty()) kernel(false, plain.data(), plain.size(), settings, results.data());
+  settings.order = taylor_order(options, TaylorVariables::SpinFactored);
+  if (!symmetric.empty()) kernel(true, symmetric.data(), symmetric.size(), settings, results.data());
 }
 
 }  // namespace

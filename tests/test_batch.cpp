@@ -169,7 +169,7 @@ TEST(Batch, EqualsTheUnbatchedTaylorIntegratorBitForBit) {
 // one), 60 random bodies over 20 s at tolerance 1e-12, stop at 0.8 rad (37 stay below, 23
 // pass it): the same verdict; for those that stay below, the same largest tilt to 2e-9 rad;
 // for those that pass it, the same crossing time to 1e-9 relative. (Measured: largest tilt
-// within 8.8e-12 of dopri5's and 2.5e-10 of DOP853's; crossing times within 2.5e-11 and
+// within 9.0e-12 of dopri5's and 2.5e-10 of DOP853's; crossing times within 2.9e-11 and
 // 1.3e-11 relative. The margin is for the growth of the step errors in a fall and over a run
 // of thousands of steps, each held to 1e-12.)
 TEST(Batch, AgreesWithDopri5AndDop853OnRandomBodies) {
@@ -207,7 +207,8 @@ TEST(Batch, AgreesWithDopri5AndDop853OnRandomBodies) {
 
 // Symmetric tops against the closed form (lagrange-exact): the largest tilt of the motion is
 // the lower root of the cubic, nutation_bounds().max_tilt; over 30 nutation periods the scan
-// reaches it, to 1e-11 rad at tolerance 1e-12 (40 tops; measured: 2.6e-13 at most).
+// reaches it, to 1e-11 rad at tolerance 1e-12 (40 tops; measured: 7.2e-12 at most, at order 24;
+// 2.6e-13 at order 15, the order before taylor_order() took the measured rule).
 TEST(Batch, LargestTiltOfSymmetricTopsIsTheClosedForms) {
   std::vector<Problem> problems;
   for (const Problem& p : random_problems(80, 4))

@@ -86,8 +86,8 @@ std::vector<Example> examples() {
 // The error against the exact motion (toy top, lagrange-exact) or DOP853 at 1e-15 (asymmetric
 // body; DOP853 and the Taylor integrator at 1e-15 agree to 5.6e-15) over the benchmark
 // horizons (10 s, 20 s), 201 samples, at tol = 1e-6 ... 1e-13: below 10 tol, and smaller at
-// each tighter tolerance by at least 2x (measured: toy top 1.1e-7, 9.2e-10, 7.1e-12,
-// 6.1e-14, 6.3e-15; asymmetric 1.7e-6, 1.1e-8, 1.2e-11, 7.1e-14, 1.2e-14, the last near the
+// each tighter tolerance by at least 2x (measured: toy top 1.5e-7, 1.7e-10, 5.6e-13,
+// 1.2e-14, 4.9e-15; asymmetric 4.2e-7, 1.6e-9, 3.3e-11, 7.5e-13, 1.4e-14, the last near the
 // reference's own error).
 TEST(Taylor, ErrorShrinksWithTheToleranceDownTo1e13) {
   const std::vector<double> toy_times = sample_times(10.0, 201), asym_times = sample_times(20.0, 201);
@@ -115,9 +115,9 @@ TEST(Taylor, ErrorShrinksWithTheToleranceDownTo1e13) {
 // Every example, 1001 samples over its horizon at tol = 1e-14: the Taylor integrator against
 // DOP853 (plain variables; for A = B the Taylor integrator uses the spin-factored ones), and
 // for A = B against lagrange-exact, within 1e-12 rad in theta and phi.
-// Measured (Taylor-DOP853; Taylor-exact; DOP853-exact): toy top 2.0e-13, 4.4e-15, 2.0e-13;
-// lab gyroscope 1.6e-13, 2.9e-15, 1.6e-13; hanging 7.5e-14, 5.5e-15, 7.4e-14; asymmetric
-// plate 1.2e-15; equal moments 2.3e-14, 8.9e-14, 8.6e-14; asymmetric benchmark 3.5e-14.
+// Measured (Taylor-DOP853; Taylor-exact; DOP853-exact): toy top 2.0e-13, 3.0e-15, 2.0e-13;
+// lab gyroscope 1.6e-13, 9.9e-16, 1.6e-13; hanging 7.5e-14, 4.7e-15, 7.4e-14; asymmetric
+// plate 4.5e-15; equal moments 2.3e-14, 8.8e-14, 8.6e-14; asymmetric benchmark 4.2e-14.
 TEST(Taylor, AgreesWithDop853AndLagrangeExactOnEveryExample) {
   for (const Example& e : examples()) {
     const std::vector<double> times = sample_times(e.horizon, 1001);
@@ -183,8 +183,8 @@ double bisect_dense_output(const Body& body, const InitialState& s, const Nonlin
 // The extrema of the tilt found on the series (roots of the series of d(k_zeta)/dt) equal
 // those found by bisection on the dense output of d(k_zeta)/dt computed from the samples'
 // angles and rates (another function of the same polynomials), to 1e-12 s; at tol = 1e-15.
-// Toy top (spin-factored) over 1 s, asymmetric body (plain) over 3 s. Measured: 8.3e-17 s,
-// 4.4e-16 s (toy top t_min, t_max); 6.7e-16, 6.7e-16 s (asymmetric). The extrema agree with
+// Toy top (spin-factored) over 1 s, asymmetric body (plain) over 3 s. Measured: 3.3e-16 s,
+// 2.8e-17 s (toy top t_min, t_max); 6.7e-16, 1.6e-15 s (asymmetric). The extrema agree with
 // tilt_extremes() (dopri5 at 1e-14, TOMS 748 on its dense output) to 1e-9 rad (their times
 // are not compared: the motion touches the same bounds every period, and which touch is
 // largest is decided by rounding).
@@ -217,7 +217,7 @@ TEST(TaylorEvents, TiltExtremaOnTheSeriesEqualBisectionOnTheDenseOutput) {
 
 // The fall of examples/asymmetric-plate.toml (1.3 rad/s, erratum E3): the time the tilt
 // passes 1 rad, found on the series of k_zeta - cos(1), equals bisection on the dense
-// output's tilt acos(cos(phi) cos(theta)) - 1 to 1e-12 s (measured 7.1e-15 s; crossing
+// output's tilt acos(cos(phi) cos(theta)) - 1 to 1e-12 s (measured 1.1e-14 s; crossing
 // at 29.7 s), and tilt_extremes (dopri5 at 1e-14) to 1e-6 s (an unstable motion: the two
 // integrations differ by 1e-8 rad there).
 TEST(TaylorEvents, ThresholdCrossingOnTheSeriesEqualsBisection) {
@@ -244,8 +244,8 @@ TEST(TaylorEvents, ThresholdCrossingOnTheSeriesEqualsBisection) {
 // The long-run top of test_splitting (A = B = 1, C = 0.5, m g R = 1, spin 5, tilt 0.3, rate
 // 0.1; nutation period 3.85 s) over 1e5 nutation periods (3.85e5 s) at tol = 1e-14: the
 // largest relative energy drift over every step (the summary's) below 1e-12, L_zeta and C w3
-// too. Measured: energy 3.2e-13, L_zeta 1.8e-13, C w3 0 (w3 is constant in the spin-factored
-// variables), 882,202 steps of order 18; about 0.6 s in Release (no `long` label needed).
+// too. Measured: energy 6.4e-13, L_zeta 5.2e-13, C w3 0 (w3 is constant in the spin-factored
+// variables), 509,807 steps of order 24; about 0.6 s in Release (no `long` label needed).
 TEST(TaylorLongRun, EnergyDriftOver1e5NutationPeriodsBelow1e12) {
   const Body top = make_body(1.0, 1.0, 0.5, 1.0);
   const InitialState start = make_state(5.0, 0.3, 0.0, 0.1, 0.0);
@@ -300,14 +300,18 @@ TEST(Dop853, ErrorFollowsTheTolerance) {
 
 // ---- Options, failures, selection --------------------------------------------------------------
 
-TEST(Taylor, OrderFollowsJorbaZou) {
-  EXPECT_EQ(taylor_order(tolerance(1e-15)), 19);  // ceil(17.27 + 1)
-  EXPECT_EQ(taylor_order(tolerance(1e-12)), 15);  // ceil(13.82 + 1)
-  EXPECT_EQ(taylor_order(tolerance(1e-6)), 8);    // ceil(6.91 + 1)
-  EXPECT_EQ(taylor_order(tolerance(1.0)), 2);     // clamped
+TEST(Taylor, OrderFollowsTheMeasuredRule) {
+  constexpr auto factored = TaylorVariables::SpinFactored, plain = TaylorVariables::Plain;
+  EXPECT_EQ(taylor_order(tolerance(1e-6), factored), 15);   // ceil(13.82 + 1)
+  EXPECT_EQ(taylor_order(tolerance(1e-3), factored), 8);    // ceil(6.91 + 1)
+  EXPECT_EQ(taylor_order(tolerance(1e-12), factored), 24);  // ceil(27.63 + 1), clamped
+  EXPECT_EQ(taylor_order(tolerance(1e-6), plain), 12);      // ceil(0.75 x 13.82 + 1)
+  EXPECT_EQ(taylor_order(tolerance(1e-12), plain), 22);     // ceil(0.75 x 27.63 + 1)
+  EXPECT_EQ(taylor_order(tolerance(1e-15), plain), 24);     // clamped
+  EXPECT_EQ(taylor_order(tolerance(1.0), plain), 2);        // clamped
   NonlinearOptions mixed;
-  mixed.rtol = 1e-6, mixed.atol = 1e-12;
-  EXPECT_EQ(taylor_order(mixed), 15);
+  mixed.rtol = 1e-3, mixed.atol = 1e-6;
+  EXPECT_EQ(taylor_order(mixed, plain), 12);
 }
 
 TEST(Taylor, RefusesBadInputAndFailsOnOneLine) {
@@ -364,7 +368,7 @@ TEST(Integrators, NamesAndTheAutomaticChoice) {
   // The default (auto at rtol = atol = 1e-12) runs the Taylor integrator and reports it.
   const Simulation sim = simulate(Model::Nonlinear, toy_top(), toy_start(), {0.0, 1.0});
   ASSERT_TRUE(sim.summary.ok());
-  EXPECT_EQ(sim.summary.solver, "Taylor, order 15, spin-factored variables");
+  EXPECT_EQ(sim.summary.solver, "Taylor, order 24, spin-factored variables");
   ASSERT_TRUE(sim.adaptive.has_value());
   EXPECT_EQ(sim.adaptive->steps, sim.summary.steps);
   SimulateOptions dop;

@@ -6,8 +6,8 @@
 /// The equations of the rigid body are a quadratic polynomial in (quaternion, angular
 /// velocity), so the Taylor coefficients of the solution to any order follow from Cauchy
 /// products of the lower ones (automatic differentiation); order n costs n + 1 multiply-adds
-/// per product term. The order comes from the tolerance (Jorba-Zou: p = ceil(-ln(eps)/2 + 1),
-/// eps = min(rtol, atol)), the step from the last two coefficients (the h at which
+/// per product term. The order comes from the tolerance (taylor_order(): Jorba-Zou's rule with
+/// a larger constant, measured), the step from the last two coefficients (the h at which
 /// |x_i[n]| h^n = atol + rtol |x_i| for n = p - 1, p), the dense output is the series itself,
 /// and events are roots of the series of the event function on [0, h].
 ///
@@ -28,18 +28,20 @@
 
 namespace heavytop {
 
-/// The highest order the Taylor integrator uses (dimensionless); rtol = 1e-15 needs 19.
+/// The highest order the Taylor integrator uses (dimensionless).
 inline constexpr int kTaylorMaxOrder = 24;
-
-/// The Taylor order for the tolerances (Jorba-Zou): ceil(-ln(eps)/2 + 1), eps = min(rtol, atol),
-/// clamped to [2, kTaylorMaxOrder].
-int taylor_order(const NonlinearOptions& options);
 
 /// Which variables the Taylor integrator used.
 enum class TaylorVariables {
   SpinFactored,  ///< A == B: (p, v1, v2), w3 constant
   Plain,         ///< A != B: (q, w1, w2, w3)
 };
+
+/// The Taylor order for the tolerances and variables (dimensionless): ceil(-k ln(eps) + 1),
+/// eps = min(rtol, atol), k = 1 for the spin-factored variables and 0.75 for the plain ones
+/// (Jorba-Zou's optimum for a fixed radius of convergence is k = 1/2; these were measured
+/// faster at equal error, docs/integrators.md), clamped to [2, kTaylorMaxOrder].
+int taylor_order(const NonlinearOptions& options, TaylorVariables variables);
 
 /// What one run of the Taylor integrator did (NonlinearSummary's fields, with
 /// rhs_evaluations = steps x order: one pass of the recurrence per order, heyoka's count).
