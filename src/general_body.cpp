@@ -52,6 +52,17 @@ void GeneralRigidBodySystem::operator()(const RigidBodyVector& x, RigidBodyVecto
   dxdt[6] = rate[2];
 }
 
+Scales detail::general_scales(const Body& body, const RigidBodyState& x0) {
+  const Eigen::Matrix3d I = inertia_tensor(body);
+  Scales s;
+  s.energy = 0.5 * x0.omega.dot(I * x0.omega) + body.mass * body.gravity * centre_of_mass(body).norm();
+  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues()[2];
+  s.momentum = std::sqrt(2.0 * largest * s.energy);
+  if (!(s.energy > 0.0)) s.energy = 1.0;
+  if (!(s.momentum > 0.0)) s.momentum = 1.0;
+  return s;
+}
+
 ConservedQuantities general_conserved_quantities(const Body& body, const RigidBodyState& x) {
   const Eigen::Vector3d L = inertia_tensor(body) * x.omega;
   const Eigen::Vector3d gamma = x.attitude.row(2).transpose();  // R^T e_zeta
@@ -76,18 +87,6 @@ void check_general(const Body& body, const NonlinearOptions& options) {
                        : body.damping.friction != 0.0 ? "damping.friction"
                                                       : "motion.driven",
                        "the general body (SPEC section 11) is integrated without damping, friction or motor only");
-}
-
-// Drift scales of the general body (integration.hpp's scales_of() for diag(A, B, C), c = R e3).
-Scales general_scales(const Body& body, const RigidBodyState& x0) {
-  const Eigen::Matrix3d I = inertia_tensor(body);
-  Scales s;
-  s.energy = 0.5 * x0.omega.dot(I * x0.omega) + body.mass * body.gravity * centre_of_mass(body).norm();
-  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues()[2];
-  s.momentum = std::sqrt(2.0 * largest * s.energy);
-  if (!(s.energy > 0.0)) s.energy = 1.0;
-  if (!(s.momentum > 0.0)) s.momentum = 1.0;
-  return s;
 }
 
 // Dormand-Prince 5(4) with its continuous extension, one accepted step at a time (the pattern

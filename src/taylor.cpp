@@ -11,6 +11,7 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <fmt/format.h>
 
+#include "heavytop/general_body.hpp"
 #include "heavytop/rigid_body.hpp"
 
 #include "detail/integration.hpp"
@@ -154,6 +155,76 @@ struct Plain {
   // Body-to-fixed attitude and body-axes w of a state (the quaternion normalised).
   static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
   static constexpr int kU1 = 4, kU2 = 5;  // the velocity components in d(k_zeta)/dt
+  static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
+    return conserved_quantities(body, x);
+  }
+  static Scales scales(const Body& body, const RigidBodyState& x0) { return scales_of(body, x0); }
+};
+
+// The general body of general_body.hpp (SPEC section 11) in the plain state: I w' = (I w) x w
+// + gamma x (m g c), with the full inertia tensor I and the centre of mass c anywhere in body
+// axes. 26 Cauchy products per order: q (x) w (12), gamma (all three components: 8), (I w) x w
+// (6, the series of L = I w being linear in w's). w' = I^-1 (...) is linear.
+struct General {
+  static constexpr int kSize = 7;
+  static constexpr TaylorVariables kVariables = TaylorVariables::General;
+  Eigen::Matrix3d inertia, inverse;  // kg m^2, I about O, and its inverse (body axes)
+  Eigen::Vector3d weight;            // N m, m g c
+  mutable double L[kM + 1][3];       // the series of I w (kg m^2/s), filled order by order
+
+  explicit General(const Body& b) {
+    const GeneralRigidBodySystem system(b);
+    inertia = system.inertia, inverse = system.inverse, weight = system.weight;
+  }
+
+  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
+
+  void coefficients(Jet& x, Gamma& g, int p) const {
+    for (int n = 0; n < p; ++n) {
+      const double* row = x.c[n];
+      for (int i = 0; i < 3; ++i)
+        L[n][i] = inertia(i, 0) * row[4] + inertia(i, 1) * row[5] + inertia(i, 2) * row[6];
+      v2d qw_w = {}, qx_w = {}, qy_w = {}, qz_w = {}, wx_w3 = {}, yz_w3 = {};  // as Plain
+      v2d xz_yz = {}, wy_wx = {}, ww_xx = {}, yy_zz = {};                      // gamma
+      v2d l2w3_l3w2 = {}, l3w1_l1w3 = {}, l1w2_l2w1 = {};                      // L x w
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j], *l = L[j];
+        const v2d w = load2(b + 4), w3 = splat(b[6]);
+        qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
+        wx_w3 += load2(a) * w3, yz_w3 += load2(a + 2) * w3;
+        gamma_terms(a, b, xz_yz, wy_wx);
+        ww_xx += load2(a) * load2(b), yy_zz += load2(a + 2) * load2(b + 2);
+        l2w3_l3w2 += v2d{l[1], l[2]} * v2d{b[6], b[5]};
+        l3w1_l1w3 += v2d{l[2], l[0]} * v2d{b[4], b[6]};
+        l1w2_l2w1 += v2d{l[0], l[1]} * v2d{b[5], b[4]};
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
+      const double g3 = ww_xx[0] - ww_xx[1] - yy_zz[0] + yy_zz[1];
+      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      double* next = x.c[n + 1];
+      next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
+      next[1] = half * (qw_w[0] + yz_w3[0] - qz_w[1]);
+      next[2] = half * (qw_w[1] + qz_w[0] - wx_w3[1]);
+      next[3] = half * (wx_w3[0] + qx_w[1] - qy_w[0]);
+      // I w' = (I w) x w + gamma x (m g c)
+      const double g1 = g.g1[n], g2 = g.g2[n];
+      const Eigen::Vector3d torque(l2w3_l3w2[0] - l2w3_l3w2[1] + (g2 * weight[2] - g3 * weight[1]),
+                                   l3w1_l1w3[0] - l3w1_l1w3[1] + (g3 * weight[0] - g1 * weight[2]),
+                                   l1w2_l2w1[0] - l1w2_l2w1[1] + (g1 * weight[1] - g2 * weight[0]));
+      const Eigen::Vector3d rate = inverse * torque;
+      next[4] = inv * rate[0];
+      next[5] = inv * rate[1];
+      next[6] = inv * rate[2];
+      next[7] = 0.0;
+    }
+  }
+
+  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
+  static constexpr int kU1 = 4, kU2 = 5;
+  static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
+    return general_conserved_quantities(body, x);
+  }
+  static Scales scales(const Body& body, const RigidBodyState& x0) { return general_scales(body, x0); }
 };
 
 // The spin-factored state of nonlinear.hpp for A == B: q = p (x) exp(psi e3 / 2) with
@@ -202,6 +273,10 @@ struct SpinFactored {
   // rate (k' = v2 n1 - v1 n2) and E, L_zeta, C w3 of this state are the body's (Rz-invariant).
   static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
   static constexpr int kU1 = 4, kU2 = 5;
+  static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
+    return conserved_quantities(body, x);
+  }
+  static Scales scales(const Body& body, const RigidBodyState& x0) { return scales_of(body, x0); }
 };
 
 // ---- The integrator -----------------------------------------------------------------------------------
@@ -227,8 +302,8 @@ class TaylorIntegrator {
       *summary_ = TaylorSummary{};
       summary_->order = order_;
       summary_->variables = System::kVariables;
-      summary_->work.symmetric = body.A == body.B;
-      scales_ = scales_of(body, System::rigid_body(x0));
+      summary_->work.symmetric = System::kVariables == TaylorVariables::SpinFactored;
+      scales_ = System::scales(body, System::rigid_body(x0));
       initial_ = conserved(x0);
     }
   }
@@ -306,6 +381,7 @@ class TaylorIntegrator {
   }
 
   ConservedQuantities conserved(const State& x) const {
+    if constexpr (System::kVariables == TaylorVariables::General) return System::conserved(body_, System::rigid_body(x));
     const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
     const double inv = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
     return conserved_from(body_, x[4], x[5], x[6], 2.0 * (qx * qz - qw * qy) * inv,
@@ -341,7 +417,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
               const NonlinearOptions& options, TaylorSummary* summary) {
   const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
   TaylorIntegrator<System> integrator(body, System(body), System::state_of(rb0), horizon, options, summary);
-  const ConservedQuantities initial = conserved_quantities(body, rb0);
+  const ConservedQuantities initial = System::conserved(body, rb0);
 
   const std::size_t room = std::min(samples.count, samples.chunk);
   Trajectory out;
@@ -357,7 +433,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
       advance_to(integrator, t, options.progress);
       integrator.interpolate(t, x);
       const RigidBodyState rb = System::rigid_body(x);
-      q = conserved_quantities(body, rb);
+      q = System::conserved(body, rb);
       a = axis_angles_of(rb);
     }
     push_angles(out, t, a);
@@ -462,6 +538,11 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
 
 // ---- Public API -------------------------------------------------------------------------------------
 
+TaylorVariables taylor_variables(const Body& body) {
+  if (is_general(body)) return TaylorVariables::General;
+  return body.A == body.B ? TaylorVariables::SpinFactored : TaylorVariables::Plain;
+}
+
 int taylor_order(const NonlinearOptions& options, TaylorVariables variables) {
   // Jorba & Zou's ceil(-ln(eps)/2 + 1) is optimal for a series with a fixed radius of
   // convergence; here the coefficients fall faster (the steps grew about as the order did), and
@@ -477,13 +558,15 @@ int taylor_order(const NonlinearOptions& options, TaylorVariables variables) {
 void detail::stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
                            const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
-  refuse_general(body, "the Taylor integrator (use dopri5 or auto)");
   detail::refuse_damping(body, "taylor");
   validate(initial);
   validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  if (body.A == body.B) simulate<SpinFactored>(body, rb0, samples, options, summary);
-  else simulate<Plain>(body, rb0, samples, options, summary);
+  switch (taylor_variables(body)) {
+    case TaylorVariables::SpinFactored: return simulate<SpinFactored>(body, rb0, samples, options, summary);
+    case TaylorVariables::Plain: return simulate<Plain>(body, rb0, samples, options, summary);
+    case TaylorVariables::General: return simulate<General>(body, rb0, samples, options, summary);
+  }
 }
 
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
@@ -497,15 +580,18 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above, const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
-  refuse_general(body, "the Taylor integrator (use dopri5 or auto)");
   detail::refuse_damping(body, "taylor");
   validate(initial);
   validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  return body.A == body.B ? scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary)
-                          : scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
+  switch (taylor_variables(body)) {
+    case TaylorVariables::SpinFactored: return scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary);
+    case TaylorVariables::Plain: return scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
+    case TaylorVariables::General: return scan_tilt<General>(body, rb0, horizon, stop_above, options, summary);
+  }
+  return {};
 }
 
 }  // namespace heavytop

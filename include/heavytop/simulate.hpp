@@ -59,12 +59,13 @@ std::string_view name(Integrator integrator);
 /// The integrator called `name` ("adaptive" is dopri5's old name), or nullopt.
 std::optional<Integrator> integrator_from_name(std::string_view name);
 /// Auto picks the Taylor integrator when min(rtol, atol) is at most this (dimensionless), or
-/// when A != B; dopri5 (Adaptive) for a symmetric body above it (docs/integrators.md, "Choosing").
+/// when A != B, or for a general body; dopri5 (Adaptive) for a symmetric body above it
+/// (docs/integrators.md, "Choosing").
 inline constexpr double kAutoTaylorBelow = 1e-4;
 /// The integrator Auto stands for with these tolerances and this body (Taylor or Adaptive,
 /// never Auto or Splitting); the rule and its measurements are in docs/integrators.md. A
-/// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques,
-/// and so does a general body (SPEC section 11, general_body.hpp).
+/// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques;
+/// a general body (SPEC section 11, general_body.hpp) gets Taylor.
 Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances);
 
 /// Settings of simulate(); each applies to the models named.

@@ -15,6 +15,8 @@
 ///  - A == B: the spin-factored state of nonlinear.hpp (quaternion p of the non-spinning
 ///    frame, transverse angular velocity v in it; w3 constant). Nothing turns at the spin.
 ///  - A != B: the plain state of rigid_body.hpp (quaternion q, body-axes w).
+///  - the general body (SPEC section 11): the same plain state with general_body.hpp's
+///    equations (full inertia tensor, centre of mass off the axis) and its conserved quantities.
 /// Body frame, units and the output columns are simulate_nonlinear()'s.
 
 #include <cstddef>
@@ -35,7 +37,12 @@ inline constexpr int kTaylorMaxOrder = 24;
 enum class TaylorVariables {
   SpinFactored,  ///< A == B: (p, v1, v2), w3 constant
   Plain,         ///< A != B: (q, w1, w2, w3)
+  General,       ///< the general body (SPEC section 11, general_body.hpp): (q, w1, w2, w3), full I, c anywhere
 };
+
+/// The variables the Taylor integrator takes for `body`: General if is_general(body), else
+/// SpinFactored for A == B, else Plain.
+TaylorVariables taylor_variables(const Body& body);
 
 /// The Taylor order for the tolerances and variables (dimensionless): ceil(-k ln(eps) + 1),
 /// eps = min(rtol, atol), k = 1 for the spin-factored variables and 0.75 for the plain ones

@@ -116,6 +116,10 @@ inline Scales scales_of(const Body& body, const RigidBodyState& x0) {
   return s;
 }
 
+// The general body's (general_body.cpp): E_scale = T(0) + m g |c|, L_scale = sqrt(2 max eig(I)
+// E_scale), as scales_of() for diag(A, B, C) and c = R e3.
+Scales general_scales(const Body& body, const RigidBodyState& x0);
+
 // Raises the summary's max_relative_*_drift to those of q against `initial`
 // (NonlinearSummary and SplittingSummary name them alike).
 template <class Summary>
