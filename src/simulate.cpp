@@ -109,10 +109,11 @@ std::optional<Integrator> integrator_from_name(std::string_view name) {
 }
 
 Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances) {
-  // Measured at equal error (docs/integrators.md, "Choosing"): the Taylor integrator is the
-  // fastest at every error level from 1e-4 down on both benchmark bodies; only for a
-  // symmetric body at loose tolerances (errors above ~1e-5) is dopri5 faster, its steps
-  // there being cheaper than a Taylor step whose length the nutation bounds.
+  // Measured at equal error (docs/integrators.md, "Choosing"): the Taylor integrator (with
+  // taylor_order()'s rule) is the fastest at every error level from 1e-3 down on both benchmark
+  // bodies; only for a symmetric body at tolerances above 1e-2 (errors of ~5e-3 and more) is
+  // dopri5 as fast or faster, its steps there being cheaper than a Taylor step whose length
+  // the nutation bounds.
   // The general body (SPEC section 11) takes the Taylor integrator at every tolerance: over 10 s
   // it took 1.1-1.5x less time than dopri5 at 1e-6, 2.4-4.7x at 1e-9, 6.4-13x at 1e-12, with
   // errors 1-40 times smaller (docs/integrators.md). The torques of SPEC section 6 are in

@@ -61,7 +61,7 @@ std::optional<Integrator> integrator_from_name(std::string_view name);
 /// Auto picks the Taylor integrator when min(rtol, atol) is at most this (dimensionless), or
 /// when A != B, or for a general body; dopri5 (Adaptive) for a symmetric body above it
 /// (docs/integrators.md, "Choosing").
-inline constexpr double kAutoTaylorBelow = 1e-4;
+inline constexpr double kAutoTaylorBelow = 1e-2;
 /// The integrator Auto stands for with these tolerances and this body (Taylor or Adaptive,
 /// never Auto or Splitting); the rule and its measurements are in docs/integrators.md. A
 /// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques;
