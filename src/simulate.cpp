@@ -155,8 +155,7 @@ void validate_damping(Model model, const Body& body, const SimulateOptions& opti
   if (model == Model::Nonlinear && options.integrator == Integrator::Splitting)
     throw InvalidInput("integrator", "the splitting integrator is for the conservative body (its order is proven "
                                      "for it only): with damping use dopri5 (or auto)");
-  if (model == Model::Nonlinear && (options.integrator == Integrator::Taylor || options.integrator == Integrator::Dop853))
-    detail::refuse_damping(body, options.integrator == Integrator::Taylor ? "taylor" : "dop853");
+  if (model == Model::Nonlinear && options.integrator == Integrator::Dop853) detail::refuse_damping(body, "dop853");
   if (linear_kind(model) && d.transverse > 0.0 && options.method == LinearMethod::Analytic)
     throw InvalidInput("method", "the closed form covers the undamped linear models: with transverse damping "
                                  "use numeric (the matrix exponential)");
@@ -237,8 +236,9 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
         TaylorSummary taylor;
         detail::stream_taylor(body, initial, samples, adaptive, &taylor);
         summary = taylor.work;
-        s.solver = fmt::format("Taylor, order {}, {} variables", taylor.order,
-                               taylor.variables == TaylorVariables::SpinFactored ? "spin-factored" : "plain");
+        s.solver = fmt::format("Taylor, order {}, {} variables{}", taylor.order,
+                               taylor.variables == TaylorVariables::SpinFactored ? "spin-factored" : "plain",
+                               taylor.damped ? ", damped" : "");
       } else if (chosen == Integrator::Dop853) {
         s.solver = "Dormand-Prince 8(5,3)";
         detail::stream_dop853(body, initial, samples, adaptive, &summary);

@@ -15,7 +15,13 @@
 ///  - A == B: the spin-factored state of nonlinear.hpp (quaternion p of the non-spinning
 ///    frame, transverse angular velocity v in it; w3 constant). Nothing turns at the spin.
 ///  - A != B: the plain state of rigid_body.hpp (quaternion q, body-axes w).
-/// Body frame, units and the output columns are simulate_nonlinear()'s.
+///  - a damped body (SPEC section 6, any A, B): the plain state and the integrals of what the
+///    torques take away (dopri5's: the work, the vertical and the axial momentum lost). Within
+///    a mode of dry friction (sliding either way, stuck, driven) the torques are polynomial;
+///    a change of mode (the spin reaching 0, the gyroscopic torque outgrowing tau0) is a root
+///    of the step's series, where the step ends, as in simulate_nonlinear().
+/// Body frame, units and the output columns are simulate_nonlinear()'s (with damping its
+/// dissipated_work, vertical_momentum_loss, axial_momentum_loss and, driven, motor_torque).
 
 #include <cstddef>
 #include <limits>
@@ -47,6 +53,8 @@ struct TaylorSummary {
   NonlinearSummary work;       ///< steps (no rejections: the step is chosen, not tried), drifts
   int order = 0;               ///< the series' order
   TaylorVariables variables = TaylorVariables::Plain;
+  bool damped = false;         ///< the torques of SPEC section 6 were integrated (plain variables)
+  std::size_t friction_events = 0;  ///< changes of the dry-friction mode (spin stopped, or freed)
 };
 
 /// simulate_nonlinear() by the Taylor method: same columns, same InvalidInput keys ("rtol",
@@ -61,7 +69,8 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 /// series of k_zeta - cos(stop_above); both found by TOMS 748 on the polynomial, in a step
 /// split into 8 pieces to isolate them (two roots in one piece of 1/8 step would be missed).
 /// Unlike tilt_extremes(), when the scan stops early t_end and max_tilt are the crossing
-/// itself (max_tilt == stop_above to rounding). Same keys ("horizon", "max_tilt") and
+/// itself (max_tilt == stop_above to rounding), and spin_at_end is set for a damped body only
+/// (0 for the conservative one, whose batched twin in batch.hpp leaves it so). Same keys ("horizon", "max_tilt") and
 /// failures as simulate_taylor().
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above = std::numeric_limits<double>::infinity(),
