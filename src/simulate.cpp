@@ -113,8 +113,11 @@ Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerance
   // fastest at every error level from 1e-4 down on both benchmark bodies; only for a
   // symmetric body at loose tolerances (errors above ~1e-5) is dopri5 faster, its steps
   // there being cheaper than a Taylor step whose length the nutation bounds.
-  // The torques of SPEC section 6 are in dopri5's equations only.
-  if (!body.damping.conservative() || is_general(body)) return Integrator::Adaptive;
+  // A damped body (SPEC section 6) measured the same (docs/integrators.md: at equal error the
+  // damped toy top crosses over near 1e-5, e.g. 1.7e-6 in 251 us against dopri5's 4.3e-6 in
+  // 289 us, 6.8e-14 in 381 us against 4.1e-12 in 4280 us; the asymmetric body with a friction
+  // stop is 1.4-14x faster on Taylor at every level), so it follows the same rule.
+  if (is_general(body)) return Integrator::Adaptive;
   const double eps = std::min(tolerances.rtol, tolerances.atol);
   return eps > kAutoTaylorBelow && body.A == body.B ? Integrator::Adaptive : Integrator::Taylor;
 }

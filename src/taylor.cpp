@@ -229,49 +229,89 @@ struct SpinFactored {
   static constexpr int kU1 = 4, kU2 = 5;
 };
 
-// The plain state of a damped body (SPEC section 6), any A, B, C: q, body-axes w [0..6], and
-// the integrals of what the torques take away, as in dopri5's damped state: the work [7] (J),
-// the vertical [8] and the axial [9] angular momentum (kg m^2/s), so that E + work,
-// L_zeta + loss and C w3 + loss are first integrals. Torques: -d_t (w1, w2, 0), and the axial
-// tau_z of the friction mode (detail::initial_friction_mode): sliding -d_a w3 - tau0 mode,
-// held (stuck, or driven) -(A - B) w1 w2 with w3' = 0 exactly. Within a mode the right-hand
-// side stays a quadratic polynomial: the linear torques are linear terms of the w rows (no
-// extra product), the rates of the integrals add w1^2, w2^2 (2), gamma_3 (4), w.gamma (2),
-// tau_z w3 and tau_z gamma_3 (2): 29 Cauchy products per order.
-struct DampedPlain {
+// ---- A damped body (SPEC section 6) ------------------------------------------------------------
+//
+// The state of the conservative sets, plus the integrals of what the torques take away, as in
+// dopri5's damped state: the work [7] (J), the vertical [8] and the axial [9] angular momentum
+// (kg m^2/s), so that E + work, L_zeta + loss and C w3 + loss are first integrals. Torques:
+// -d_t w_perp, and the axial tau_z of the friction mode (detail::initial_friction_mode):
+// sliding -d_a w3 - tau0 mode, held (stuck, or driven) -(A - B) w1 w2 with w3' = 0 exactly.
+// Within a mode the right-hand side stays a quadratic polynomial: the linear torques are
+// linear terms of the w (v) rows, at no extra product; the integrals' rates add |w_perp|^2
+// (2 products), gamma_3 (4), w_perp.gamma (2), tau_z w3 and tau_z gamma_3 (2).
+struct DampedTerms {
   static constexpr int kSize = 10, kWidth = 10;
   static constexpr bool kDamped = true;
-  static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
   static constexpr int kWork = 7, kVerticalLoss = 8, kAxialLoss = 9;
   using State = std::array<double, kSize>;
-  double e1, e2, e3, ka, kb;  // as Plain's
-  double da, db;              // d_t / A, d_t / B (1/s)
-  double drag, axial, friction, inv_c, a_minus_b;  // d_t (N m s), d_a (N m s), tau0 (N m), 1/C, A - B
+  double drag, axial, friction, inv_c;  // d_t (N m s), d_a (N m s), tau0 (N m), 1/C
   bool driven;
-  double mode = 1.0;  // the friction mode: sign of w3 while sliding, 0 while held
+  double mode = 1.0;        // the friction mode: sign of w3 while sliding, 0 while held
   Coefficients g3{}, tz{};  // gamma_3 and tau_z (N m), order by order
 
-  explicit DampedPlain(const Body& b)
-      : e1((b.B - b.C) / b.A), e2((b.C - b.A) / b.B), e3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
-        kb(b.mgR() / b.B), da(b.damping.transverse / b.A), db(b.damping.transverse / b.B),
-        drag(b.damping.transverse), axial(b.damping.axial), friction(b.damping.friction), inv_c(1.0 / b.C),
-        a_minus_b(b.A - b.B), driven(b.damping.driven) {}
+  explicit DampedTerms(const Body& b)
+      : drag(b.damping.transverse), axial(b.damping.axial), friction(b.damping.friction), inv_c(1.0 / b.C),
+        driven(b.damping.driven) {}
 
-  // The integrals start at 0.
+  bool held() const { return driven || mode == 0.0; }
+
+  // The integrals start at 0 (for A == B: psi = 0, p = q, v = (w1, w2)).
   static State state_of(const RigidBodyState& rb) {
     State x{};
     const RigidBodyVector v = to_vector(rb);
     std::copy(v.begin(), v.end(), x.begin());
     return x;
   }
+  static RigidBodyState rigid_body(const State& x) {
+    RigidBodyVector v;
+    std::copy(x.begin(), x.begin() + 7, v.begin());
+    return from_vector(v);
+  }
+  static constexpr int kU1 = 4, kU2 = 5;
+
+  // Order n's tau_z (given (A - B) (w1 w2)[n]), then the rows n + 1 of the three integrals,
+  // once gamma's coefficient n is stored and with (w_perp . w_perp)[n] = `perp2`.
+  void integrals(JetOf<kWidth>& x, const Gamma& g, int n, double gyroscopic, double perp2) {
+    const double* row = x.c[n];
+    tz[n] = held() ? -gyroscopic : -axial * row[6] - (n == 0 ? friction * mode : 0.0);
+    // The products with gamma and tau_z of order n need their coefficient n just formed.
+    double w_gamma = 0.0, tz_w3 = 0.0, tz_g3 = 0.0;
+    for (int j = 0; j <= n; ++j) {
+      const double* a = x.c[j];
+      w_gamma += a[4] * g.g1[n - j] + a[5] * g.g2[n - j];
+      tz_w3 += tz[n - j] * a[6];
+      tz_g3 += tz[j] * g3[n - j];
+    }
+    const double inv = 1.0 / (n + 1);
+    double* next = x.c[n + 1];
+    // What the torques take away: -tau.w, -tau.zeta (gravity's torque has none), -tau_z.
+    next[7] = inv * (drag * perp2 - tz_w3);
+    next[8] = inv * (drag * w_gamma - tz_g3);
+    next[9] = -inv * tz[n];
+  }
+};
+
+// gamma_3 = qw^2 - qx^2 - qy^2 + qz^2 from its pair sums (qw qw, qx qx), (qy qy, qz qz).
+inline double gamma3(v2d ww_xx, v2d yy_zz) { return (ww_xx[0] - ww_xx[1]) - (yy_zz[0] - yy_zz[1]); }
+
+// A damped body with A != B: Plain's state (q, body-axes w) and the integrals. 29 Cauchy
+// products per order.
+struct DampedPlain : DampedTerms {
+  static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
+  double e1, e2, e3, ka, kb;  // as Plain's
+  double da, db;              // d_t / A, d_t / B (1/s)
+  double a_minus_b;           // A - B (kg m^2)
+
+  explicit DampedPlain(const Body& b)
+      : DampedTerms(b), e1((b.B - b.C) / b.A), e2((b.C - b.A) / b.B), e3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
+        kb(b.mgR() / b.B), da(b.damping.transverse / b.A), db(b.damping.transverse / b.B), a_minus_b(b.A - b.B) {}
 
   void coefficients(JetOf<kWidth>& x, Gamma& g, int p) {
-    const bool held = driven || mode == 0.0;
+    const bool hold = held();
     for (int n = 0; n < p; ++n) {
       v2d qw_w = {}, qx_w = {}, qy_w = {}, qz_w = {};  // q_i (w1, w2)
       v2d wx_w3 = {}, yz_w3 = {};                      // (qw, qx) w3, (qy, qz) w3
-      v2d xz_yz = {}, wy_wx = {};                      // gamma_1, gamma_2
-      v2d ww_xx = {}, yy_zz = {};                      // gamma_3: (qw qw, qx qx), (qy qy, qz qz)
+      v2d xz_yz = {}, wy_wx = {}, ww_xx = {}, yy_zz = {};  // gamma
       v2d w23_w31 = {}, w11_w22 = {};                  // (w2 w3, w3 w1), (w1 w1, w2 w2)
       double w12 = 0.0;                                // w1 w2
       for (int j = 0; j <= n; ++j) {
@@ -286,18 +326,10 @@ struct DampedPlain {
         w12 += a[4] * b[5];
       }
       store_gamma(g, n, xz_yz, wy_wx);
-      g3[n] = (ww_xx[0] - ww_xx[1]) - (yy_zz[0] - yy_zz[1]);
-      const double* row = x.c[n];
-      tz[n] = held ? -a_minus_b * w12 : -axial * row[6] - (n == 0 ? friction * mode : 0.0);
-      // The products with gamma and tau_z of order n need their coefficient n just formed.
-      double w_gamma = 0.0, tz_w3 = 0.0, tz_g3 = 0.0;
-      for (int j = 0; j <= n; ++j) {
-        const double* a = x.c[j];
-        w_gamma += a[4] * g.g1[n - j] + a[5] * g.g2[n - j];
-        tz_w3 += tz[n - j] * a[6];
-        tz_g3 += tz[j] * g3[n - j];
-      }
+      g3[n] = gamma3(ww_xx, yy_zz);
+      integrals(x, g, n, a_minus_b * w12, w11_w22[0] + w11_w22[1]);
       const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double* row = x.c[n];
       double* next = x.c[n + 1];
       // q' = q (x) (0, w) / 2
       next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
@@ -307,20 +339,54 @@ struct DampedPlain {
       // Euler: I w' = (I w) x w + m g R (gamma x e3) - d_t w_perp + tau_z e3
       next[4] = inv * (e1 * w23_w31[0] + ka * g.g2[n] - da * row[4]);
       next[5] = inv * (e2 * w23_w31[1] - kb * g.g1[n] - db * row[5]);
-      next[6] = held ? 0.0 : inv * (e3 * w12 + inv_c * tz[n]);
-      // What the torques take away: -tau.w, -tau.zeta (gravity's torque has none), -tau_z.
-      next[7] = inv * (drag * (w11_w22[0] + w11_w22[1]) - tz_w3);
-      next[8] = inv * (drag * w_gamma - tz_g3);
-      next[9] = -inv * tz[n];
+      next[6] = hold ? 0.0 : inv * (e3 * w12 + inv_c * tz[n]);
     }
   }
+};
 
-  static RigidBodyState rigid_body(const State& x) {
-    RigidBodyVector v;
-    std::copy(x.begin(), x.begin() + 7, v.begin());
-    return from_vector(v);
+// A damped body with A == B: SpinFactored's state (p, v in N, w3) and the integrals. The
+// transverse inertia and drag are isotropic, so psi still drops out:
+// v' = (C w3 / A) J v + (m g R / A) J gamma - (d_t / A) v, C w3' = tau_z (no gyroscopic
+// torque: a stopped spin stays stopped). w3 now has a series, so C w3 / A J v is a product
+// (2): 24 Cauchy products per order. For A == B the outputs are Rz-invariant (SpinFactored).
+struct DampedSpinFactored : DampedTerms {
+  static constexpr TaylorVariables kVariables = TaylorVariables::SpinFactored;
+  double c_over_a, ka, da;  // C / A (1), m g R / A (1/s^2), d_t / A (1/s)
+
+  explicit DampedSpinFactored(const Body& b)
+      : DampedTerms(b), c_over_a(b.C / b.A), ka(b.mgR() / b.A), da(b.damping.transverse / b.A) {}
+
+  void coefficients(JetOf<kWidth>& x, Gamma& g, int p) {
+    const bool hold = held();
+    for (int n = 0; n < p; ++n) {
+      v2d pw_v = {}, px_v = {}, py_v = {}, pz_v = {};      // p_i (v1, v2)
+      v2d xz_yz = {}, wy_wx = {}, ww_xx = {}, yy_zz = {};  // gamma
+      v2d w3_v = {}, v11_v22 = {};                         // w3 (v1, v2), (v1 v1, v2 v2)
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d v = load2(b + 4);
+        pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
+        gamma_terms(a, b, xz_yz, wy_wx);
+        ww_xx += load2(a) * load2(b), yy_zz += load2(a + 2) * load2(b + 2);
+        w3_v += splat(a[6]) * v;
+        v11_v22 += load2(a + 4) * v;
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
+      g3[n] = gamma3(ww_xx, yy_zz);
+      integrals(x, g, n, 0.0, v11_v22[0] + v11_v22[1]);
+      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double* row = x.c[n];
+      double* next = x.c[n + 1];
+      // p' = p (x) (0, v1, v2, 0) / 2
+      next[0] = -half * (px_v[0] + py_v[1]);
+      next[1] = half * (pw_v[0] - pz_v[1]);
+      next[2] = half * (pw_v[1] + pz_v[0]);
+      next[3] = half * (px_v[1] - py_v[0]);
+      next[4] = inv * (-c_over_a * w3_v[1] + ka * g.g2[n] - da * row[4]);
+      next[5] = inv * (c_over_a * w3_v[0] - ka * g.g1[n] - da * row[5]);
+      next[6] = hold ? 0.0 : inv * inv_c * tz[n];
+    }
   }
-  static constexpr int kU1 = 4, kU2 = 5;
 };
 
 // ---- The integrator -----------------------------------------------------------------------------------
@@ -656,8 +722,10 @@ void detail::stream_taylor(const Body& body, const InitialState& initial, const 
   validate(initial);
   validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  if (!body.damping.conservative()) simulate<DampedPlain>(body, rb0, samples, options, summary);
-  else if (body.A == body.B) simulate<SpinFactored>(body, rb0, samples, options, summary);
+  if (!body.damping.conservative()) {
+    if (body.A == body.B) simulate<DampedSpinFactored>(body, rb0, samples, options, summary);
+    else simulate<DampedPlain>(body, rb0, samples, options, summary);
+  } else if (body.A == body.B) simulate<SpinFactored>(body, rb0, samples, options, summary);
   else simulate<Plain>(body, rb0, samples, options, summary);
 }
 
@@ -678,7 +746,9 @@ TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial,
   if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  if (!body.damping.conservative()) return scan_tilt<DampedPlain>(body, rb0, horizon, stop_above, options, summary);
+  if (!body.damping.conservative())
+    return body.A == body.B ? scan_tilt<DampedSpinFactored>(body, rb0, horizon, stop_above, options, summary)
+                            : scan_tilt<DampedPlain>(body, rb0, horizon, stop_above, options, summary);
   return body.A == body.B ? scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary)
                           : scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
 }

@@ -342,6 +342,11 @@ TEST(DampedNonlinear, TheIntegratorsThatCannotIncludeDampingRefuseIt) {
   o.integrator = Integrator::Taylor;  // its damped variables do (test_taylor_damped.cpp)
   EXPECT_EQ(key_of(Model::Nonlinear, o), "accepted");
   EXPECT_EQ(key_of(Model::Nonlinear, {}), "accepted");
+  // auto: the conservative body's rule (A = B here: dopri5 above min(rtol, atol) = 1e-4).
+  EXPECT_EQ(choose_integrator(b, {}), Integrator::Taylor);
+  NonlinearOptions loose;
+  loose.rtol = loose.atol = 1e-3;
+  EXPECT_EQ(choose_integrator(b, loose), Integrator::Adaptive);
   EXPECT_EQ(key_of(Model::LagrangeExact, {}), "model");
   b.damping = {.transverse = 0.1};
   EXPECT_EQ(key_of(Model::Linearized, {}), "method");  // the closed form is undamped
