@@ -111,8 +111,8 @@ double root(F f, double a, double b, double fa, double fb, double h) {
 // step restores (normalise()), so the right-hand side is a quadratic polynomial.
 //   gamma_1 = 2 (qx qz - qw qy),  gamma_2 = 2 (qy qz + qw qx).
 //
-// Damping torques linear in w (-d_t w_perp, -d_a (w.k) k, the friction issue) are linear
-// terms in the w (or v, w3) rows below: - d_t/A w1[n] etc., at no extra Cauchy product.
+// A damped body has its own two sets (DampedPlain, DampedSpinFactored, below), whose torques
+// linear in w are linear terms in the w (or v, w3) rows: - d_t/A w1[n] etc.
 struct Gamma {
   Coefficients g1{}, g2{};
 };
@@ -493,7 +493,6 @@ class TaylorIntegrator {
   }
 
   double step_size() const { return h_; }
-  const System& system() const { return system_; }
 
  private:
   // tau in [0, h] where the step's friction mode ends, or -1 if it lasts the step: while
