@@ -203,9 +203,9 @@ TEST(TaylorDamped, SimulateAndTheTiltScanTakeIt) {
   struct Scan { Body body; InitialState start; const char* solver; bool falls; };
   const Scan scans[] = {
       {with(make_body(1.0, 1.5, 2.0, 1.0), {.transverse = 0.02, .axial = 0.05, .friction = 0.01}),
-       make_state(8.0, 0.2, 0.05), "Taylor, order 15, plain variables, damped", false},
+       make_state(8.0, 0.2, 0.05), ", plain variables, damped", false},
       {with(make_body(1.0, 1.0, 1.5, 1.0), {.transverse = 0.01, .axial = 0.1}), make_state(2.0, 0.1),
-       "Taylor, order 15, spin-factored variables, damped", true},
+       ", spin-factored variables, damped", true},
   };
   std::string record;
   for (const Scan& c : scans) {
@@ -214,7 +214,9 @@ TEST(TaylorDamped, SimulateAndTheTiltScanTakeIt) {
     o.adaptive = tolerance(1e-12);
     const Simulation sim = simulate(Model::Nonlinear, c.body, c.start, sample_times(5.0, 11), o);
     ASSERT_TRUE(sim.summary.ok()) << sim.summary.message;
-    EXPECT_EQ(sim.summary.solver, c.solver);
+    // "Taylor, order p, ... variables, damped" (p from taylor_order(), not asserted here).
+    EXPECT_TRUE(sim.summary.solver.starts_with("Taylor, order ")) << sim.summary.solver;
+    EXPECT_TRUE(sim.summary.solver.ends_with(c.solver)) << sim.summary.solver;
 
     const TiltExtremes ty = taylor_tilt_extremes(c.body, c.start, 30.0, 1.0, tolerance(1e-12));
     const TiltExtremes dp = tilt_extremes(c.body, c.start, 30.0, 1.0, tolerance(1e-12));
