@@ -3,10 +3,15 @@
 //   toy:  example_toy_top() spun at 200 rad/s, theta0 = 0.05 rad, over 10 s;
 //   asym: A = 1, B = 1.5, C = 2 kg m^2, m = 1 kg, g = 9.81 m/s^2, R = 0.1 m, spin 10 rad/s,
 //         theta0 = 0.2 rad, over 20 s.
+// and two damped ones (SPEC section 6; Taylor and dopri5 only, DOP853 holds no torques):
+//   toy-damped:  the toy top with d_t = 1e-7, d_a = 2e-7 N m s (bench_damping's drag);
+//   asym-stop:   asym with d_t = 0.01, d_a = 0.05 N m s and dry friction tau0 = 1.5 N m,
+//                which stops the spin at 11.5 s (a change of friction mode inside the run).
 // Error: the largest angle between the spin axis and the reference's over 101 samples (rad);
 // reference lagrange-exact (toy) and DOP853 at rtol = atol = 1e-15 (asym; it agrees with the
 // Taylor integrator at 1e-15 to 6e-15 rad and with a long-double Bulirsch-Stoer run to 5e-16,
-// bench/peers/). For each integrator and error level (1e-6, 1e-9, 1e-12) the tolerance is the
+// bench/peers/); for the damped ones the Taylor integrator at 1e-15 (it agrees with dopri5 at
+// 1e-14 to 1.2e-12 and 1.8e-12 rad). For each integrator and error level (1e-6, 1e-9, 1e-12) the tolerance is the
 // loosest of 10^(-k/4) whose error, and that of the next 8 tighter ones, are at most the
 // level (calibrated once, outside the timing). Timed: simulate(Nonlinear) with 101 samples.
 // Counters:
@@ -39,16 +44,25 @@ struct Problem {
   double horizon;
 };
 
+// 0 toy, 1 asym, 2 toy-damped, 3 asym-stop.
 Problem problem(int which) {
   heavytop::InitialState s;
-  if (which == 0) {
+  if (which == 0 || which == 2) {
     s.spin = 200.0, s.theta0 = 0.05;
-    return {heavytop::example_toy_top(), s, 10.0};
+    heavytop::Body b = heavytop::example_toy_top();
+    if (which == 2) b.damping = {.transverse = 1e-7, .axial = 2e-7};
+    return {b, s, 10.0};
   }
   heavytop::Body b;
   b.A = 1.0, b.B = 1.5, b.C = 2.0, b.mass = 1.0, b.gravity = 9.81, b.length = 0.1;
+  if (which == 3) b.damping = {.transverse = 0.01, .axial = 0.05, .friction = 1.5};
   s.spin = 10.0, s.theta0 = 0.2;
   return {b, s, 20.0};
+}
+
+const char* label(int which) {
+  const char* names[] = {" toy", " asym", " toy-damped", " asym-stop"};
+  return names[which];
 }
 
 using Axes = std::vector<Eigen::Vector3d>;
@@ -84,9 +98,10 @@ const Axes& reference(int which) {
   auto [it, added] = cache.try_emplace(which);
   if (added) {
     const Problem p = problem(which);
-    it->second = which == 0 ? axes_of(heavytop::simulate_lagrange_exact(p.body, p.start,
-                                                                         heavytop::sample_times(p.horizon, 101)))
-                            : axes_of(run(p, Integrator::Dop853, 1e-15).trajectory);
+    it->second = which == 0   ? axes_of(heavytop::simulate_lagrange_exact(p.body, p.start,
+                                                                           heavytop::sample_times(p.horizon, 101)))
+                  : which == 1 ? axes_of(run(p, Integrator::Dop853, 1e-15).trajectory)
+                               : axes_of(run(p, Integrator::Taylor, 1e-15).trajectory);
   }
   return it->second;
 }
@@ -114,7 +129,7 @@ std::pair<double, double> calibrate(int which, Integrator integrator, double lev
   return it->second;
 }
 
-// Arguments: problem (0 toy, 1 asym), integrator (Integrator's value), -log10(error level).
+// Arguments: problem (0 toy, 1 asym, 2 toy-damped, 3 asym-stop), integrator (Integrator's value), -log10(error level).
 void BM_EqualError(benchmark::State& state) {
   const int which = static_cast<int>(state.range(0));
   const auto integrator = static_cast<Integrator>(state.range(1));
@@ -130,7 +145,7 @@ void BM_EqualError(benchmark::State& state) {
     s = run(p, integrator, tol);
     benchmark::DoNotOptimize(s.trajectory.theta.data());
   }
-  state.SetLabel(std::string(heavytop::name(integrator)) + (which == 0 ? " toy" : " asym"));
+  state.SetLabel(std::string(heavytop::name(integrator)) + label(which));
   state.counters["tol"] = tol;
   state.counters["error"] = error;
   state.counters["steps"] = static_cast<double>(s.summary.steps);
@@ -145,6 +160,9 @@ void equal_error_cases(benchmark::internal::Benchmark* b) {
   for (int which : {0, 1})
     for (Integrator i : {Integrator::Taylor, Integrator::Dop853, Integrator::Adaptive})
       for (int level : {6, 9, 12}) b->Args({which, static_cast<int>(i), level});
+  for (int which : {2, 3})
+    for (Integrator i : {Integrator::Taylor, Integrator::Adaptive})
+      for (int level : {4, 6, 9, 12}) b->Args({which, static_cast<int>(i), level});
 }
 BENCHMARK(BM_EqualError)->Apply(equal_error_cases)->UseRealTime()->Unit(benchmark::kMicrosecond);
 

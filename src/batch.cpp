@@ -111,7 +111,7 @@ void scan(std::span<const Body> bodies, std::span<const InitialState> initials, 
     const Body& b = bodies[i];
     validate(b);
     refuse_general(b, "the Taylor integrator (use dopri5 or auto)");
-    detail::refuse_damping(b, "taylor");
+    detail::refuse_damping(b, "the batched Taylor integrator");
     validate(initials[i]);
     detail::BatchPoint point;
     point.index = i;

@@ -52,6 +52,15 @@ void GeneralRigidBodySystem::operator()(const RigidBodyVector& x, RigidBodyVecto
   dxdt[6] = rate[2];
 }
 
+void detail::refuse_damped_general(const Body& body) {
+  if (!body.damping.conservative())
+    throw InvalidInput(body.damping.transverse != 0.0 ? "damping.transverse"
+                       : body.damping.axial != 0.0    ? "damping.axial"
+                       : body.damping.friction != 0.0 ? "damping.friction"
+                                                      : "motion.driven",
+                       "the general body (SPEC section 11) is integrated without damping, friction or motor only");
+}
+
 Scales detail::general_scales(const Body& body, const RigidBodyState& x0) {
   const Eigen::Matrix3d I = inertia_tensor(body);
   Scales s;
@@ -81,12 +90,7 @@ using State = RigidBodyVector;
 void check_general(const Body& body, const NonlinearOptions& options) {
   validate(body);
   validate(options);
-  if (!body.damping.conservative())
-    throw InvalidInput(body.damping.transverse != 0.0 ? "damping.transverse"
-                       : body.damping.axial != 0.0    ? "damping.axial"
-                       : body.damping.friction != 0.0 ? "damping.friction"
-                                                      : "motion.driven",
-                       "the general body (SPEC section 11) is integrated without damping, friction or motor only");
+  refuse_damped_general(body);
 }
 
 // Dormand-Prince 5(4) with its continuous extension, one accepted step at a time (the pattern

@@ -107,11 +107,6 @@ struct Equations {
     return -axial * w3 - friction * mode;
   }
 
-  // N m, the torque the motor produces: what holds w3 against the body and its own loads.
-  double motor_torque(double w3, double gyroscopic) const {
-    return -gyroscopic + axial * w3 + friction * (w3 > 0.0 ? 1.0 : w3 < 0.0 ? -1.0 : 0.0);
-  }
-
   void operator()(const State& x, State& d, double /*t*/) const {
     attitude_rate(x, d);
     const Vertical g = vertical(x);
@@ -261,7 +256,7 @@ class Integrator {
         max_steps_(options.max_steps),
         summary_(summary),
         x_(x0) {
-    if constexpr (Damped) equations_.mode = initial_mode(x0);
+    if constexpr (Damped) equations_.mode = initial_friction_mode(body.damping, x0[kW3], gyroscopic(x0));
     equations_(x_, dxdt_, 0.0);
     end_x_ = x_;
     end_dxdt_ = dxdt_;
@@ -277,7 +272,6 @@ class Integrator {
 
   double time() const { return t_; }
   double previous_time() const { return t_old_; }
-  const Equations<Symmetric, Damped>& equations() const { return equations_; }
 
   // One accepted step from time() on (shortened to an event of dry friction); afterwards
   // interpolate() covers [previous_time(), time()].
@@ -313,12 +307,6 @@ class Integrator {
     return (body_.A - body_.B) * rb.omega.x() * rb.omega.y();
   }
 
-  // Sliding in the direction of w3, or stuck when w3 = 0 and friction can hold it.
-  double initial_mode(const State& x) const {
-    if (x[kW3] != 0.0) return x[kW3] > 0.0 ? 1.0 : -1.0;
-    const double drive = gyroscopic(x);
-    return std::abs(drive) <= body_.damping.friction ? 0.0 : (drive > 0.0 ? 1.0 : -1.0);
-  }
 
   // After a step in one friction mode: if the mode ended inside it (w3 reached 0 while
   // sliding, or the gyroscopic torque overcame the static friction while stuck), the step
@@ -349,13 +337,8 @@ class Integrator {
       t_event = bracket.second;
     }
     interpolate_step(t_event, y);
-    if (mode != 0.0) {
-      y[kW3] = 0.0;  // stopped: from here on exactly zero while it sticks
-      const double drive = gyroscopic(y);
-      equations_.mode = std::abs(drive) <= body_.damping.friction ? 0.0 : (drive > 0.0 ? 1.0 : -1.0);
-    } else {
-      equations_.mode = gyroscopic(y) > 0.0 ? 1.0 : -1.0;
-    }
+    if (mode != 0.0) y[kW3] = 0.0;  // stopped: from here on exactly zero while it sticks
+    equations_.mode = next_friction_mode(body_.damping, mode, gyroscopic(y));
     x_ = y;
     t_ = t_event;
     equations_(x_, dxdt_, t_);
@@ -409,17 +392,6 @@ class Integrator {
 };
 
 
-// The damped body's extra columns: what its torques took away (each the balance of a
-// conserved quantity: energy_drift + dissipated_work = 0, and so on), and the motor's torque.
-void add_damping_columns(Trajectory& out, std::size_t n, bool driven) {
-  std::vector<const char*> names = {"dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"};
-  if (driven) names.push_back("motor_torque");
-  for (const char* name : names) {
-    out.extra.emplace_back(name, std::vector<double>{});
-    out.extra.back().second.reserve(n);
-  }
-}
-
 template <bool Symmetric, bool Damped>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
               const NonlinearOptions& options, NonlinearSummary* summary) {
@@ -458,8 +430,8 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
       out.extra[damping_column + 2].second.push_back(x[kAxialLoss]);
       if (body.damping.driven) {
         const RigidBodyState rb = to_rigid_body(x);
-        out.extra[damping_column + 3].second.push_back(integrator.equations().motor_torque(
-            rb.omega.z(), (body.A - body.B) * rb.omega.x() * rb.omega.y()));
+        out.extra[damping_column + 3].second.push_back(
+            motor_torque(body.damping, rb.omega.z(), (body.A - body.B) * rb.omega.x() * rb.omega.y()));
       }
     }
     maybe_flush(samples, out, i + 1 == samples.count);

@@ -114,11 +114,14 @@ Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerance
   // bodies; only for a symmetric body at tolerances above 1e-2 (errors of ~5e-3 and more) is
   // dopri5 as fast or faster, its steps there being cheaper than a Taylor step whose length
   // the nutation bounds.
+  // A damped body (SPEC section 6) follows the same rule: at equal error the Taylor integrator
+  // was 1.2, 1.9 and 6.2 times faster than dopri5 on the damped toy top at 1e-4, 1e-6, 1e-9
+  // (dopri5 does not reach 1e-12), 2.0, 3.1, 12 and 44 times on the asymmetric body with a
+  // friction stop at 1e-4 ... 1e-12 (bench_integrators, docs/integrators.md; Jorba-Zou's orders).
   // The general body (SPEC section 11) takes the Taylor integrator at every tolerance: over 10 s
   // it took 1.1-1.5x less time than dopri5 at 1e-6, 2.4-4.7x at 1e-9, 6.4-13x at 1e-12, with
-  // errors 1-40 times smaller (docs/integrators.md). The torques of SPEC section 6 are in
-  // dopri5's equations only.
-  if (!body.damping.conservative()) return Integrator::Adaptive;
+  // errors 1-40 times smaller (docs/integrators.md); damped, it goes to dopri5, which refuses it.
+  if (is_general(body) && !body.damping.conservative()) return Integrator::Adaptive;
   const double eps = std::min(tolerances.rtol, tolerances.atol);
   return eps > kAutoTaylorBelow && body.A == body.B && !is_general(body) ? Integrator::Adaptive : Integrator::Taylor;
 }
@@ -159,8 +162,7 @@ void validate_damping(Model model, const Body& body, const SimulateOptions& opti
   if (model == Model::Nonlinear && options.integrator == Integrator::Splitting)
     throw InvalidInput("integrator", "the splitting integrator is for the conservative body (its order is proven "
                                      "for it only): with damping use dopri5 (or auto)");
-  if (model == Model::Nonlinear && (options.integrator == Integrator::Taylor || options.integrator == Integrator::Dop853))
-    detail::refuse_damping(body, options.integrator == Integrator::Taylor ? "taylor" : "dop853");
+  if (model == Model::Nonlinear && options.integrator == Integrator::Dop853) detail::refuse_damping(body, "dop853");
   if (linear_kind(model) && d.transverse > 0.0 && options.method == LinearMethod::Analytic)
     throw InvalidInput("method", "the closed form covers the undamped linear models: with transverse damping "
                                  "use numeric (the matrix exponential)");
@@ -238,10 +240,11 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
         TaylorSummary taylor;
         detail::stream_taylor(body, initial, samples, adaptive, &taylor);
         summary = taylor.work;
-        s.solver = fmt::format("Taylor, order {}, {}", taylor.order,
+        s.solver = fmt::format("Taylor, order {}, {}{}", taylor.order,
                                taylor.variables == TaylorVariables::SpinFactored ? "spin-factored variables"
                                : taylor.variables == TaylorVariables::Plain      ? "plain variables"
-                                                                                 : "plain variables, general body");
+                                                                                 : "plain variables, general body",
+                               taylor.damped ? ", damped" : "");
       } else if (general) {
         s.solver = "Dormand-Prince 5(4), general body";
         detail::stream_general(body, initial, samples, adaptive, &summary);

@@ -40,7 +40,7 @@ double parse_number(std::string_view text, const char* what) {
 
 // True if the point goes to the batched Taylor integrator (batch.hpp): with auto or taylor, a
 // conservative body on principal axes. Damped and general bodies, and dopri5 or dop853, go
-// one point at a time.
+// one point at a time (a damped one with taylor through taylor_tilt_extremes).
 bool batched(const SweepOptions& o, const Body& body) {
   return (o.nonlinear_integrator == Integrator::Auto || o.nonlinear_integrator == Integrator::Taylor) && batchable(body);
 }
@@ -206,8 +206,8 @@ void validate_sweep(const Body& base, const InitialState& base_state,
       throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. theta0 = 1e-3): the upright body never moves");
     if (start_tilt >= options.max_tilt)
       throw InvalidInput("max_tilt", "must exceed the initial tilt");
-    // Taylor and DOP853 hold no torques of SPEC section 6 (the grid varies none of them).
-    if (options.nonlinear_integrator == Integrator::Taylor) detail::refuse_damping(base, "taylor");
+    // DOP853 holds no torques of SPEC section 6 (the grid varies none of them); a damped
+    // body goes to the Taylor integrator one point at a time (batchable() is false for it).
     if (options.nonlinear_integrator == Integrator::Dop853) detail::refuse_damping(base, "dop853");
   }
 }

@@ -32,13 +32,15 @@ namespace {
 constexpr int kM = kTaylorMaxOrder;
 using Coefficients = std::array<double, kM + 1>;  // one series
 
-// The state's series, order by order: c[n][i] is coefficient n of variable i (7 used, the
-// 8th pads a row to two cache-line halves). A row per order lets one loop over j form every
-// Cauchy product of order n in SIMD pairs (SSE2, the x86-64 baseline) and Horner's rule run
-// on all variables at once.
-struct alignas(64) Jet {
-  double c[kM + 1][8];
+// The state's series, order by order: c[n][i] is coefficient n of variable i (conservative
+// sets: 7 used, the 8th pads a row to two cache-line halves; the damped set: 10). A row per
+// order lets one loop over j form every Cauchy product of order n in SIMD pairs (SSE2, the
+// x86-64 baseline) and Horner's rule run on all variables at once. W is even.
+template <int W>
+struct alignas(64) JetOf {
+  double c[kM + 1][W];
 };
+using Jet = JetOf<8>;
 
 using v2d = double __attribute__((vector_size(16)));
 inline v2d load2(const double* p) {
@@ -62,24 +64,45 @@ inline double horner(const Coefficients& s, int p, double tau) {
   return v;
 }
 
-// Every variable of the jet at tau (Horner, four pairs at a time).
-inline void horner(const Jet& x, int p, double tau, double* out) {
-  v2d v[4];
-  for (int i = 0; i < 4; ++i) v[i] = load2(&x.c[p][2 * i]);
+// Every variable of the jet at tau (Horner, W / 2 pairs at a time).
+template <int W>
+inline void horner(const JetOf<W>& x, int p, double tau, double* out) {
+  constexpr int kPairs = W / 2;
+  v2d v[kPairs];
+  for (int i = 0; i < kPairs; ++i) v[i] = load2(&x.c[p][2 * i]);
   const v2d t = splat(tau);
   for (int n = p - 1; n >= 0; --n)
-    for (int i = 0; i < 4; ++i) v[i] = v[i] * t + load2(&x.c[n][2 * i]);
-  for (int i = 0; i < 4; ++i) std::memcpy(out + 2 * i, &v[i], sizeof v[i]);
+    for (int i = 0; i < kPairs; ++i) v[i] = v[i] * t + load2(&x.c[n][2 * i]);
+  for (int i = 0; i < kPairs; ++i) std::memcpy(out + 2 * i, &v[i], sizeof v[i]);
+}
+
+// Variable i of the jet at tau (Horner).
+template <int W>
+inline double horner(const JetOf<W>& x, int i, int p, double tau) {
+  double v = x.c[p][i];
+  for (int n = p - 1; n >= 0; --n) v = v * tau + x.c[n][i];
+  return v;
 }
 
 // One variable's series out of the jet.
-inline Coefficients series_of(const Jet& x, int i, int p) {
+template <int W>
+inline Coefficients series_of(const JetOf<W>& x, int i, int p) {
   Coefficients s{};
   for (int n = 0; n <= p; ++n) s[n] = x.c[n][i];
   return s;
 }
 
-// ---- The two sets of variables --------------------------------------------------------------------
+// A root of f on [a, b] where f(a), f(b) have opposite signs, to ~1e-15 of the step h
+// (TOMS 748; f is a function of the step's series, cheap, so it is solved to rounding).
+template <class F>
+double root(F f, double a, double b, double fa, double fb, double h) {
+  std::uintmax_t iterations = 100;
+  const auto bracket = boost::math::tools::toms748_solve(
+      f, a, b, fa, fb, [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+// ---- The sets of variables --------------------------------------------------------------------
 //
 // Both keep the attitude quaternion in slots 0..3 (w, x, y, z) and compute the series of the
 // upward vertical's first two components gamma_1, gamma_2 along the way: the torque
@@ -89,8 +112,8 @@ inline Coefficients series_of(const Jet& x, int i, int p) {
 // step restores (normalise()), so the right-hand side is a quadratic polynomial.
 //   gamma_1 = 2 (qx qz - qw qy),  gamma_2 = 2 (qy qz + qw qx).
 //
-// Damping torques linear in w (-d_t w_perp, -d_a (w.k) k, the friction issue) are linear
-// terms in the w (or v, w3) rows below: - d_t/A w1[n] etc., at no extra Cauchy product.
+// A damped body has its own two sets (DampedPlain, DampedSpinFactored, below), whose torques
+// linear in w are linear terms in the w (or v, w3) rows: - d_t/A w1[n] etc.
 struct Gamma {
   Coefficients g1{}, g2{};
 };
@@ -106,10 +129,19 @@ inline void store_gamma(Gamma& g, int n, v2d xz_yz, v2d wy_wx) {
   g.g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
 }
 
+// The conserved quantities and drift scales of a body on principal axes (every set but General).
+struct OrdinaryBody {
+  static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
+    return conserved_quantities(body, x);
+  }
+  static Scales scales(const Body& body, const RigidBodyState& x0) { return scales_of(body, x0); }
+};
+
 // The plain state of rigid_body.hpp: q (body to fixed), w in body axes. 19 Cauchy products
 // per order: q (x) w (all 12 pairs q_i w_m), gamma (4), w x I w (3).
-struct Plain {
-  static constexpr int kSize = 7;
+struct Plain : OrdinaryBody {
+  static constexpr int kSize = 7, kWidth = 8;
+  static constexpr bool kDamped = false;
   static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
   double e1, e2, e3, ka, kb;  // (B - C)/A, (C - A)/B, (A - B)/C (1), m g R / A, m g R / B (1/s^2)
 
@@ -155,10 +187,6 @@ struct Plain {
   // Body-to-fixed attitude and body-axes w of a state (the quaternion normalised).
   static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
   static constexpr int kU1 = 4, kU2 = 5;  // the velocity components in d(k_zeta)/dt
-  static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
-    return conserved_quantities(body, x);
-  }
-  static Scales scales(const Body& body, const RigidBodyState& x0) { return scales_of(body, x0); }
 };
 
 // The general body of general_body.hpp (SPEC section 11) in the plain state: I w' = (I w) x w
@@ -166,7 +194,8 @@ struct Plain {
 // axes. 26 Cauchy products per order: q (x) w (12), gamma (all three components: 8), (I w) x w
 // (6, the series of L = I w being linear in w's). w' = I^-1 (...) is linear.
 struct General {
-  static constexpr int kSize = 7;
+  static constexpr int kSize = 7, kWidth = 8;
+  static constexpr bool kDamped = false;
   static constexpr TaylorVariables kVariables = TaylorVariables::General;
   Eigen::Matrix3d inertia, inverse;  // kg m^2, I about O, and its inverse (body axes)
   Eigen::Vector3d weight;            // N m, m g c
@@ -232,8 +261,9 @@ struct General {
 // For A == B, w3 is constant and psi drops out: v' = (C w3 / A) J v + (m g R / A) J gamma.
 // Slot 6 holds w3 (its series is the constant). 12 Cauchy products per order:
 // p (x) v (the 8 pairs p_i v_m) and gamma (4).
-struct SpinFactored {
-  static constexpr int kSize = 7;
+struct SpinFactored : OrdinaryBody {
+  static constexpr int kSize = 7, kWidth = 8;
+  static constexpr bool kDamped = false;
   static constexpr TaylorVariables kVariables = TaylorVariables::SpinFactored;
   double c_over_a, ka;  // C / A (1), m g R / A (1/s^2)
 
@@ -273,10 +303,166 @@ struct SpinFactored {
   // rate (k' = v2 n1 - v1 n2) and E, L_zeta, C w3 of this state are the body's (Rz-invariant).
   static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
   static constexpr int kU1 = 4, kU2 = 5;
-  static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
-    return conserved_quantities(body, x);
+};
+
+// ---- A damped body (SPEC section 6) ------------------------------------------------------------
+//
+// The state of the conservative sets, plus the integrals of what the torques take away, as in
+// dopri5's damped state: the work [7] (J), the vertical [8] and the axial [9] angular momentum
+// (kg m^2/s), so that E + work, L_zeta + loss and C w3 + loss are first integrals. Torques:
+// -d_t w_perp, and the axial tau_z of the friction mode (detail::initial_friction_mode):
+// sliding -d_a w3 - tau0 mode, held (stuck, or driven) -(A - B) w1 w2 with w3' = 0 exactly.
+// Within a mode the right-hand side stays a quadratic polynomial: the linear torques are
+// linear terms of the w (v) rows, at no extra product; the integrals' rates add |w_perp|^2
+// (2 products), gamma_3 (4), w_perp.gamma (2), tau_z w3 and tau_z gamma_3 (2).
+struct DampedTerms : OrdinaryBody {
+  static constexpr int kSize = 10, kWidth = 10;
+  static constexpr bool kDamped = true;
+  static constexpr int kWork = 7, kVerticalLoss = 8, kAxialLoss = 9;
+  using State = std::array<double, kSize>;
+  double drag, axial, friction, inv_c;  // d_t (N m s), d_a (N m s), tau0 (N m), 1/C
+  bool driven;
+  double mode = 1.0;        // the friction mode: sign of w3 while sliding, 0 while held
+  Coefficients g3{}, tz{};  // gamma_3 and tau_z (N m), order by order
+
+  explicit DampedTerms(const Body& b)
+      : drag(b.damping.transverse), axial(b.damping.axial), friction(b.damping.friction), inv_c(1.0 / b.C),
+        driven(b.damping.driven) {}
+
+  bool held() const { return driven || mode == 0.0; }
+
+  // The integrals start at 0 (for A == B: psi = 0, p = q, v = (w1, w2)).
+  static State state_of(const RigidBodyState& rb) {
+    State x{};
+    const RigidBodyVector v = to_vector(rb);
+    std::copy(v.begin(), v.end(), x.begin());
+    return x;
   }
-  static Scales scales(const Body& body, const RigidBodyState& x0) { return scales_of(body, x0); }
+  static RigidBodyState rigid_body(const State& x) {
+    RigidBodyVector v;
+    std::copy(x.begin(), x.begin() + 7, v.begin());
+    return from_vector(v);
+  }
+  static constexpr int kU1 = 4, kU2 = 5;
+
+  // Order n's tau_z (given (A - B) (w1 w2)[n]), then the rows n + 1 of the three integrals,
+  // once gamma's coefficient n is stored and with (w_perp . w_perp)[n] = `perp2`.
+  void integrals(JetOf<kWidth>& x, const Gamma& g, int n, double gyroscopic, double perp2) {
+    const double* row = x.c[n];
+    tz[n] = held() ? -gyroscopic : -axial * row[6] - (n == 0 ? friction * mode : 0.0);
+    // The products with gamma and tau_z of order n need their coefficient n just formed.
+    double w_gamma = 0.0, tz_w3 = 0.0, tz_g3 = 0.0;
+    for (int j = 0; j <= n; ++j) {
+      const double* a = x.c[j];
+      w_gamma += a[4] * g.g1[n - j] + a[5] * g.g2[n - j];
+      tz_w3 += tz[n - j] * a[6];
+      tz_g3 += tz[j] * g3[n - j];
+    }
+    const double inv = 1.0 / (n + 1);
+    double* next = x.c[n + 1];
+    // What the torques take away: -tau.w, -tau.zeta (gravity's torque has none), -tau_z.
+    next[7] = inv * (drag * perp2 - tz_w3);
+    next[8] = inv * (drag * w_gamma - tz_g3);
+    next[9] = -inv * tz[n];
+  }
+};
+
+// gamma_3 = qw^2 - qx^2 - qy^2 + qz^2 from its pair sums (qw qw, qx qx), (qy qy, qz qz).
+inline double gamma3(v2d ww_xx, v2d yy_zz) { return (ww_xx[0] - ww_xx[1]) - (yy_zz[0] - yy_zz[1]); }
+
+// A damped body with A != B: Plain's state (q, body-axes w) and the integrals. 29 Cauchy
+// products per order.
+struct DampedPlain : DampedTerms {
+  static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
+  double e1, e2, e3, ka, kb;  // as Plain's
+  double da, db;              // d_t / A, d_t / B (1/s)
+  double a_minus_b;           // A - B (kg m^2)
+
+  explicit DampedPlain(const Body& b)
+      : DampedTerms(b), e1((b.B - b.C) / b.A), e2((b.C - b.A) / b.B), e3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
+        kb(b.mgR() / b.B), da(b.damping.transverse / b.A), db(b.damping.transverse / b.B), a_minus_b(b.A - b.B) {}
+
+  void coefficients(JetOf<kWidth>& x, Gamma& g, int p) {
+    const bool hold = held();
+    for (int n = 0; n < p; ++n) {
+      v2d qw_w = {}, qx_w = {}, qy_w = {}, qz_w = {};  // q_i (w1, w2)
+      v2d wx_w3 = {}, yz_w3 = {};                      // (qw, qx) w3, (qy, qz) w3
+      v2d xz_yz = {}, wy_wx = {}, ww_xx = {}, yy_zz = {};  // gamma
+      v2d w23_w31 = {}, w11_w22 = {};                  // (w2 w3, w3 w1), (w1 w1, w2 w2)
+      double w12 = 0.0;                                // w1 w2
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d w = load2(b + 4), w3 = splat(b[6]);
+        qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
+        wx_w3 += load2(a) * w3, yz_w3 += load2(a + 2) * w3;
+        gamma_terms(a, b, xz_yz, wy_wx);
+        ww_xx += load2(a) * load2(b), yy_zz += load2(a + 2) * load2(b + 2);
+        w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
+        w11_w22 += load2(a + 4) * w;
+        w12 += a[4] * b[5];
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
+      g3[n] = gamma3(ww_xx, yy_zz);
+      integrals(x, g, n, a_minus_b * w12, w11_w22[0] + w11_w22[1]);
+      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double* row = x.c[n];
+      double* next = x.c[n + 1];
+      // q' = q (x) (0, w) / 2
+      next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
+      next[1] = half * (qw_w[0] + yz_w3[0] - qz_w[1]);
+      next[2] = half * (qw_w[1] + qz_w[0] - wx_w3[1]);
+      next[3] = half * (wx_w3[0] + qx_w[1] - qy_w[0]);
+      // Euler: I w' = (I w) x w + m g R (gamma x e3) - d_t w_perp + tau_z e3
+      next[4] = inv * (e1 * w23_w31[0] + ka * g.g2[n] - da * row[4]);
+      next[5] = inv * (e2 * w23_w31[1] - kb * g.g1[n] - db * row[5]);
+      next[6] = hold ? 0.0 : inv * (e3 * w12 + inv_c * tz[n]);
+    }
+  }
+};
+
+// A damped body with A == B: SpinFactored's state (p, v in N, w3) and the integrals. The
+// transverse inertia and drag are isotropic, so psi still drops out:
+// v' = (C w3 / A) J v + (m g R / A) J gamma - (d_t / A) v, C w3' = tau_z (no gyroscopic
+// torque: a stopped spin stays stopped). w3 now has a series, so C w3 / A J v is a product
+// (2): 24 Cauchy products per order. For A == B the outputs are Rz-invariant (SpinFactored).
+struct DampedSpinFactored : DampedTerms {
+  static constexpr TaylorVariables kVariables = TaylorVariables::SpinFactored;
+  double c_over_a, ka, da;  // C / A (1), m g R / A (1/s^2), d_t / A (1/s)
+
+  explicit DampedSpinFactored(const Body& b)
+      : DampedTerms(b), c_over_a(b.C / b.A), ka(b.mgR() / b.A), da(b.damping.transverse / b.A) {}
+
+  void coefficients(JetOf<kWidth>& x, Gamma& g, int p) {
+    const bool hold = held();
+    for (int n = 0; n < p; ++n) {
+      v2d pw_v = {}, px_v = {}, py_v = {}, pz_v = {};      // p_i (v1, v2)
+      v2d xz_yz = {}, wy_wx = {}, ww_xx = {}, yy_zz = {};  // gamma
+      v2d w3_v = {}, v11_v22 = {};                         // w3 (v1, v2), (v1 v1, v2 v2)
+      for (int j = 0; j <= n; ++j) {
+        const double *a = x.c[j], *b = x.c[n - j];
+        const v2d v = load2(b + 4);
+        pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
+        gamma_terms(a, b, xz_yz, wy_wx);
+        ww_xx += load2(a) * load2(b), yy_zz += load2(a + 2) * load2(b + 2);
+        w3_v += splat(a[6]) * v;
+        v11_v22 += load2(a + 4) * v;
+      }
+      store_gamma(g, n, xz_yz, wy_wx);
+      g3[n] = gamma3(ww_xx, yy_zz);
+      integrals(x, g, n, 0.0, v11_v22[0] + v11_v22[1]);
+      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double* row = x.c[n];
+      double* next = x.c[n + 1];
+      // p' = p (x) (0, v1, v2, 0) / 2
+      next[0] = -half * (px_v[0] + py_v[1]);
+      next[1] = half * (pw_v[0] - pz_v[1]);
+      next[2] = half * (pw_v[1] + pz_v[0]);
+      next[3] = half * (px_v[1] - py_v[0]);
+      next[4] = inv * (-c_over_a * w3_v[1] + ka * g.g2[n] - da * row[4]);
+      next[5] = inv * (c_over_a * w3_v[0] - ka * g.g1[n] - da * row[5]);
+      next[6] = hold ? 0.0 : inv * inv_c * tz[n];
+    }
+  }
 };
 
 // ---- The integrator -----------------------------------------------------------------------------------
@@ -284,8 +470,9 @@ struct SpinFactored {
 template <class System>
 class TaylorIntegrator {
  public:
-  static constexpr int N = System::kSize;
+  static constexpr int N = System::kSize, W = System::kWidth;
   using State = std::array<double, N>;
+  using Jet = JetOf<W>;
 
   TaylorIntegrator(const Body& body, const System& system, const State& x0, double horizon,
                    const NonlinearOptions& options, TaylorSummary* summary)
@@ -298,10 +485,13 @@ class TaylorIntegrator {
         max_steps_(options.max_steps),
         summary_(summary),
         x_(x0) {
+    if constexpr (System::kDamped)
+      system_.mode = initial_friction_mode(body.damping, x0[6], (body.A - body.B) * x0[4] * x0[5]);
     if (summary_) {
       *summary_ = TaylorSummary{};
       summary_->order = order_;
       summary_->variables = System::kVariables;
+      summary_->damped = System::kDamped;
       summary_->work.symmetric = System::kVariables == TaylorVariables::SpinFactored;
       scales_ = System::scales(body, System::rigid_body(x0));
       initial_ = conserved(x0);
@@ -323,7 +513,7 @@ class TaylorIntegrator {
           "loosen rtol/atol)", max_steps_, t_));
     normalise();
     for (int i = 0; i < N; ++i) jet_.c[0][i] = x_[i];
-    jet_.c[0][7] = 0.0;
+    for (int i = N; i < W; ++i) jet_.c[0][i] = 0.0;
     system_.coefficients(jet_, gamma_, order_);
 
     // The step at which the last two terms reach the tolerance, componentwise:
@@ -344,13 +534,23 @@ class TaylorIntegrator {
       throw std::runtime_error(fmt::format(
           "taylor: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_));
 
+    // Dry friction: the step ends where its mode does (the series holds for that mode only).
+    double event = -1.0;
+    if constexpr (System::kDamped) {
+      event = friction_event(h);
+      if (event >= 0.0) h = event;
+    }
+
     t_old_ = t_;
     h_ = h;
-    double end[8];
+    double end[W];
     horner(jet_, order_, h, end);
     std::copy(end, end + N, x_.begin());
     t_ = (h == left) ? horizon_ : t_old_ + h;
     ++steps_;
+    if constexpr (System::kDamped) {
+      if (event >= 0.0) change_friction_mode();
+    }
     if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
       throw std::runtime_error(
           fmt::format("taylor: the state stopped being finite at t = {:.6g} s", t_old_));
@@ -363,7 +563,7 @@ class TaylorIntegrator {
       out = x_;
       return;
     }
-    double at[8];
+    double at[W];
     horner(jet_, order_, t - t_old_, at);
     std::copy(at, at + N, out.begin());
   }
@@ -371,6 +571,39 @@ class TaylorIntegrator {
   double step_size() const { return h_; }
 
  private:
+  // tau in [0, h] where the step's friction mode ends, or -1 if it lasts the step: while
+  // sliding, the first root of w3 mode (the spin stops); while stuck, of tau0 - |(A - B) w1 w2|
+  // (the gyroscopic torque outgrows static friction). The step is split into 8 pieces to find
+  // the first sign change, which TOMS 748 solves on the series (nonlinear.cpp's events, which
+  // look at the step's end only, on the dense output).
+  double friction_event(double h) const {
+    const Damping& d = body_.damping;
+    const double mode = system_.mode, a_minus_b = body_.A - body_.B;
+    if (!(d.friction > 0.0) || d.driven || (mode == 0.0 && a_minus_b == 0.0)) return -1.0;
+    const int p = order_;
+    auto event = [&](double tau) {
+      if (mode != 0.0) return horner(jet_, 6, p, tau) * mode;
+      return d.friction - std::abs(a_minus_b * horner(jet_, 4, p, tau) * horner(jet_, 5, p, tau));
+    };
+    constexpr int kPieces = 8;
+    double a = 0.0, fa = event(0.0);
+    for (int k = 1; k <= kPieces; ++k) {
+      const double b = k == kPieces ? h : h * k / kPieces, fb = event(b);
+      if (mode != 0.0 ? !(fb > 0.0) : fb < 0.0) return fb < 0.0 ? root(event, a, b, fa, fb, h) : b;
+      a = b, fa = fb;
+    }
+    return -1.0;
+  }
+
+  // At the end of a mode (x_ there): a stopped spin is exactly 0 from here on, and the next
+  // mode is nonlinear.cpp's (detail::next_friction_mode).
+  void change_friction_mode() {
+    const double mode = system_.mode;
+    if (mode != 0.0) x_[6] = 0.0;
+    system_.mode = next_friction_mode(body_.damping, mode, (body_.A - body_.B) * x_[4] * x_[5]);
+    if (summary_) ++summary_->friction_events;
+  }
+
   // |q| = 1 before each step: the vertical's formula is quadratic only on the unit sphere.
   void normalise() {
     const double norm = std::sqrt(x_[0] * x_[0] + x_[1] * x_[1] + x_[2] * x_[2] + x_[3] * x_[3]);
@@ -381,11 +614,21 @@ class TaylorIntegrator {
   }
 
   ConservedQuantities conserved(const State& x) const {
-    if constexpr (System::kVariables == TaylorVariables::General) return System::conserved(body_, System::rigid_body(x));
-    const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
-    const double inv = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
-    return conserved_from(body_, x[4], x[5], x[6], 2.0 * (qx * qz - qw * qy) * inv,
-                          2.0 * (qy * qz + qw * qx) * inv, (qw * qw - qx * qx - qy * qy + qz * qz) * inv);
+    if constexpr (System::kVariables == TaylorVariables::General) {
+      return System::conserved(body_, System::rigid_body(x));
+    } else {
+      const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
+      const double inv = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+      ConservedQuantities q =
+          conserved_from(body_, x[4], x[5], x[6], 2.0 * (qx * qz - qw * qy) * inv, 2.0 * (qy * qz + qw * qx) * inv,
+                         (qw * qw - qx * qx - qy * qy + qz * qz) * inv);
+      if constexpr (System::kDamped) {  // plus what the torques took away
+        q.energy += x[System::kWork];
+        q.vertical_momentum += x[System::kVerticalLoss];
+        q.axial_momentum += x[System::kAxialLoss];
+      }
+      return q;
+    }
   }
 
   void monitor() {
@@ -423,8 +666,10 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
   Trajectory out;
   out.reserve(room);
   add_conserved_columns(out, room);
+  const std::size_t damping_column = out.extra.size();
+  if constexpr (System::kDamped) add_damping_columns(out, room, body.damping.driven);
   const AxisAngles a0 = axis_angles_of(rb0);  // t = 0 from the input itself (SPEC section 2)
-  typename TaylorIntegrator<System>::State x;
+  typename TaylorIntegrator<System>::State x = System::state_of(rb0);
   for (std::size_t i = 0; i < samples.count; ++i) {
     const double t = samples.time(i);
     ConservedQuantities q = initial;
@@ -438,6 +683,13 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
     }
     push_angles(out, t, a);
     push_conserved(out, q, initial);
+    if constexpr (System::kDamped) {
+      out.extra[damping_column].second.push_back(x[System::kWork]);
+      out.extra[damping_column + 1].second.push_back(x[System::kVerticalLoss]);
+      out.extra[damping_column + 2].second.push_back(x[System::kAxialLoss]);
+      if (body.damping.driven)
+        out.extra[damping_column + 3].second.push_back(motor_torque(body.damping, x[6], (body.A - body.B) * x[4] * x[5]));
+    }
     maybe_flush(samples, out, i + 1 == samples.count);
     if (options.progress) options.progress(t);
   }
@@ -456,11 +708,7 @@ double tilt_of(const State& x) {
 // A root of the polynomial s on [a, b] where s(a), s(b) have opposite signs, to ~1e-15 of
 // the step (TOMS 748; the polynomial is cheap, so it is solved to rounding).
 double polynomial_root(const Coefficients& s, int p, double a, double b, double fa, double fb, double h) {
-  std::uintmax_t iterations = 100;
-  const auto bracket = boost::math::tools::toms748_solve(
-      [&](double tau) { return horner(s, p, tau); }, a, b, fa, fb,
-      [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
-  return 0.5 * (bracket.first + bracket.second);
+  return root([&](double tau) { return horner(s, p, tau); }, a, b, fa, fb, h);
 }
 
 template <class System>
@@ -523,6 +771,7 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
         note(t0 + crossing, tilt_of(y));
         e.exceeded = true;
         e.t_end = t0 + crossing;
+        if constexpr (System::kDamped) e.spin_at_end = y[6];
         return e;
       }
       a = b, ra = rb, ka = kb;
@@ -531,7 +780,21 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
     note(integrator.time(), tilt_of(y));
   }
   e.t_end = horizon;
+  if constexpr (System::kDamped) e.spin_at_end = y[6];
   return e;
+}
+
+// The set of variables for a body; a damped general body is refused (SPEC section 11 is
+// integrated undamped), naming its damping key.
+enum class Set { SpinFactored, Plain, General, DampedSpinFactored, DampedPlain };
+Set taylor_set(const Body& body) {
+  const bool damped = !body.damping.conservative();
+  switch (taylor_variables(body)) {
+    case TaylorVariables::General: refuse_damped_general(body); return Set::General;
+    case TaylorVariables::SpinFactored: return damped ? Set::DampedSpinFactored : Set::SpinFactored;
+    case TaylorVariables::Plain: return damped ? Set::DampedPlain : Set::Plain;
+  }
+  return Set::Plain;
 }
 
 }  // namespace
@@ -558,14 +821,15 @@ int taylor_order(const NonlinearOptions& options, TaylorVariables variables) {
 void detail::stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
                            const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
-  detail::refuse_damping(body, "taylor");
   validate(initial);
   validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  switch (taylor_variables(body)) {
-    case TaylorVariables::SpinFactored: return simulate<SpinFactored>(body, rb0, samples, options, summary);
-    case TaylorVariables::Plain: return simulate<Plain>(body, rb0, samples, options, summary);
-    case TaylorVariables::General: return simulate<General>(body, rb0, samples, options, summary);
+  switch (taylor_set(body)) {
+    case Set::SpinFactored: return simulate<SpinFactored>(body, rb0, samples, options, summary);
+    case Set::Plain: return simulate<Plain>(body, rb0, samples, options, summary);
+    case Set::General: return simulate<General>(body, rb0, samples, options, summary);
+    case Set::DampedSpinFactored: return simulate<DampedSpinFactored>(body, rb0, samples, options, summary);
+    case Set::DampedPlain: return simulate<DampedPlain>(body, rb0, samples, options, summary);
   }
 }
 
@@ -580,16 +844,17 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above, const NonlinearOptions& options, TaylorSummary* summary) {
   validate(body);
-  detail::refuse_damping(body, "taylor");
   validate(initial);
   validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  switch (taylor_variables(body)) {
-    case TaylorVariables::SpinFactored: return scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary);
-    case TaylorVariables::Plain: return scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
-    case TaylorVariables::General: return scan_tilt<General>(body, rb0, horizon, stop_above, options, summary);
+  switch (taylor_set(body)) {
+    case Set::SpinFactored: return scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary);
+    case Set::Plain: return scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
+    case Set::General: return scan_tilt<General>(body, rb0, horizon, stop_above, options, summary);
+    case Set::DampedSpinFactored: return scan_tilt<DampedSpinFactored>(body, rb0, horizon, stop_above, options, summary);
+    case Set::DampedPlain: return scan_tilt<DampedPlain>(body, rb0, horizon, stop_above, options, summary);
   }
   return {};
 }

@@ -212,6 +212,18 @@ check "driven: the motor_torque column, the spin held" python3 -c '
 import csv; r = list(csv.reader(open("driven.csv"))); h = r[0]
 assert h[-4:] == ["dissipated_work", "vertical_momentum_loss", "axial_momentum_loss", "motor_torque"], h
 assert all(abs(float(x[h.index("motor_torque")]) - 2e-5) < 1e-18 for x in r[1:])'
+# --integrator taylor takes a [damping] section (issue 14): dopri5's columns, its numbers to 1e-9.
+{ cat ok.toml; printf '[damping]\ntransverse = 0.01\naxial = 0.02\nfriction = 0.05\n'; } > damped.toml
+"$H" simulate --config damped.toml --model nonlinear --integrator taylor --theta0 0.1 --t-end 2 --samples 5 > damped-taylor.csv
+"$H" simulate --config damped.toml --model nonlinear --integrator dopri5 --theta0 0.1 --t-end 2 --samples 5 > damped-dopri5.csv
+check "taylor with [damping]: dopri5's columns and values" python3 - damped-taylor.csv damped-dopri5.csv <<'PY'
+import csv, sys
+a, b = (list(csv.reader(open(n))) for n in sys.argv[1:])
+assert a[0] == b[0] and a[0][-3:] == ["dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"], a[0]
+assert float(a[-1][a[0].index("dissipated_work")]) > 1e-3  # something was dissipated
+for x, y in zip(a[1:], b[1:]):
+    assert all(abs(float(u) - float(v)) < 1e-9 for u, v in zip(x, y)), (x, y)
+PY
 # A damped body's report says how long it stays up: the lifetime command's JSON, and its figure.
 "$H" report --axial-damping 2e-7 --theta0 0.01 --output damped-report > /dev/null 2>&1
 check "damped report: lifetime.json is the lifetime command's, with its figure" bash -c \

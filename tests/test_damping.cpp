@@ -215,8 +215,11 @@ TEST(Damping, ValidationNamesTheKey) {
 using test_support::column;
 using test_support::make_state;
 
+// dopri5's damped equations (auto now picks the Taylor integrator for most damped bodies;
+// tests/test_taylor_damped.cpp holds it to the same laws and to dopri5).
 Trajectory run_nonlinear(const Body& b, const InitialState& s, double t_end, std::size_t n, double tol = 1e-12) {
   SimulateOptions o;
+  o.integrator = Integrator::Adaptive;
   o.adaptive.rtol = o.adaptive.atol = tol;
   const Simulation sim = simulate(Model::Nonlinear, b, s, sample_times(t_end, n), o);
   EXPECT_TRUE(sim.summary.ok()) << sim.summary.message;
@@ -336,13 +339,17 @@ TEST(DampedNonlinear, TheIntegratorsThatCannotIncludeDampingRefuseIt) {
   SimulateOptions splitting;
   splitting.integrator = Integrator::Splitting;
   EXPECT_EQ(key_of(Model::Nonlinear, splitting), "integrator");
-  for (Integrator i : {Integrator::Taylor, Integrator::Dop853}) {  // their equations hold no torques
-    SimulateOptions o;
-    o.integrator = i;
-    EXPECT_EQ(key_of(Model::Nonlinear, o), "integrator");
-  }
-  EXPECT_EQ(choose_integrator(b, {}), Integrator::Adaptive);  // auto takes the one that does
+  SimulateOptions o;
+  o.integrator = Integrator::Dop853;  // its equations hold no torques
+  EXPECT_EQ(key_of(Model::Nonlinear, o), "integrator");
+  o.integrator = Integrator::Taylor;  // its damped variables do (test_taylor_damped.cpp)
+  EXPECT_EQ(key_of(Model::Nonlinear, o), "accepted");
   EXPECT_EQ(key_of(Model::Nonlinear, {}), "accepted");
+  // auto: the conservative body's rule (A = B here: dopri5 above min(rtol, atol) = 1e-2).
+  EXPECT_EQ(choose_integrator(b, {}), Integrator::Taylor);
+  NonlinearOptions loose;
+  loose.rtol = loose.atol = 0.05;
+  EXPECT_EQ(choose_integrator(b, loose), Integrator::Adaptive);
   EXPECT_EQ(key_of(Model::LagrangeExact, {}), "model");
   b.damping = {.transverse = 0.1};
   EXPECT_EQ(key_of(Model::Linearized, {}), "method");  // the closed form is undamped

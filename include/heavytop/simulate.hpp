@@ -64,8 +64,9 @@ std::optional<Integrator> integrator_from_name(std::string_view name);
 inline constexpr double kAutoTaylorBelow = 1e-2;
 /// The integrator Auto stands for with these tolerances and this body (Taylor or Adaptive,
 /// never Auto or Splitting); the rule and its measurements are in docs/integrators.md. A
-/// damped body (SPEC section 6) always gets Adaptive, the one whose equations hold the torques;
-/// a general body (SPEC section 11, general_body.hpp) gets Taylor.
+/// damped body (SPEC section 6) follows the same rule (the Taylor integrator holds its
+/// torques, taylor.hpp); a general body (SPEC section 11, general_body.hpp) gets Taylor, and a
+/// damped general body Adaptive (which refuses it: the general body is integrated undamped).
 Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances);
 
 /// Settings of simulate(); each applies to the models named.

@@ -17,7 +17,13 @@
 ///  - A != B: the plain state of rigid_body.hpp (quaternion q, body-axes w).
 ///  - the general body (SPEC section 11): the same plain state with general_body.hpp's
 ///    equations (full inertia tensor, centre of mass off the axis) and its conserved quantities.
-/// Body frame, units and the output columns are simulate_nonlinear()'s.
+///  - a damped body (SPEC section 6): the spin-factored (A == B, w3 no longer constant) or the
+///    plain state (A != B), and the integrals of what the torques take away (dopri5's: the work, the vertical and the axial momentum lost). Within
+///    a mode of dry friction (sliding either way, stuck, driven) the torques are polynomial;
+///    a change of mode (the spin reaching 0, the gyroscopic torque outgrowing tau0) is a root
+///    of the step's series, where the step ends, as in simulate_nonlinear().
+/// Body frame, units and the output columns are simulate_nonlinear()'s (with damping its
+/// dissipated_work, vertical_momentum_loss, axial_momentum_loss and, driven, motor_torque).
 
 #include <cstddef>
 #include <limits>
@@ -56,6 +62,8 @@ struct TaylorSummary {
   NonlinearSummary work;       ///< steps (no rejections: the step is chosen, not tried), drifts
   int order = 0;               ///< the series' order
   TaylorVariables variables = TaylorVariables::Plain;
+  bool damped = false;         ///< the torques of SPEC section 6 were integrated
+  std::size_t friction_events = 0;  ///< changes of the dry-friction mode (spin stopped, or freed)
 };
 
 /// simulate_nonlinear() by the Taylor method: same columns, same InvalidInput keys ("rtol",
@@ -70,8 +78,9 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 /// series of k_zeta - cos(stop_above); both found by TOMS 748 on the polynomial, in a step
 /// split into 8 pieces to isolate them (two roots in one piece of 1/8 step would be missed).
 /// Unlike tilt_extremes(), when the scan stops early t_end and max_tilt are the crossing
-/// itself (max_tilt == stop_above to rounding). Same keys ("horizon", "max_tilt") and
-/// failures as simulate_taylor().
+/// itself (max_tilt == stop_above to rounding), and spin_at_end is set for a damped body only
+/// (0 for the conservative one, whose batched twin in batch.hpp leaves it so). Same keys
+/// ("horizon", "max_tilt") and failures as simulate_taylor().
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above = std::numeric_limits<double>::infinity(),
                                   const NonlinearOptions& options = {}, TaylorSummary* summary = nullptr);

@@ -120,6 +120,10 @@ inline Scales scales_of(const Body& body, const RigidBodyState& x0) {
 // E_scale), as scales_of() for diag(A, B, C) and c = R e3.
 Scales general_scales(const Body& body, const RigidBodyState& x0);
 
+// Throws InvalidInput naming the first damping key (or motion.driven) of a damped body: the
+// general body is integrated without SPEC section 6's torques (general_body.cpp).
+void refuse_damped_general(const Body& body);
+
 // Raises the summary's max_relative_*_drift to those of q against `initial`
 // (NonlinearSummary and SplittingSummary name them alike).
 template <class Summary>
@@ -266,6 +270,46 @@ inline void push_conserved(Trajectory& out, const ConservedQuantities& q,
                            q.vertical_momentum - initial.vertical_momentum,
                            q.axial_momentum - initial.axial_momentum};
   for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
+}
+
+// ---- Damped bodies (SPEC section 6; nonlinear.cpp's dopri5, taylor.cpp) ----------------------------
+//
+// The axial torque tau_z depends on a mode: sliding in the direction `mode` = +-1 of w3
+// (-d_a w3 - tau0 mode), or held (mode 0: static friction holds w3 = 0; likewise a motor
+// while driven), tau_z = -(A - B) w1 w2 then cancelling the gyroscopic torque on the spin.
+
+// The mode at a start (or restart) with spin w3 (rad/s) and gyroscopic torque (A - B) w1 w2
+// (N m): sliding with w3, or, at w3 = 0, held while dry friction can hold it, else sliding
+// the way the gyroscopic torque drives it. Without friction there are no modes: sliding,
+// whose torque is then -d_a w3 for either sign.
+inline double initial_friction_mode(const Damping& d, double w3, double gyroscopic) {
+  if (w3 != 0.0) return w3 > 0.0 ? 1.0 : -1.0;
+  if (d.friction == 0.0) return 1.0;
+  return std::abs(gyroscopic) <= d.friction ? 0.0 : (gyroscopic > 0.0 ? 1.0 : -1.0);
+}
+
+// The mode after an event of dry friction (w3 reached 0 while sliding, or the gyroscopic
+// torque outgrew tau0 while held), given the gyroscopic torque there (N m).
+inline double next_friction_mode(const Damping& d, double mode, double gyroscopic) {
+  if (mode != 0.0) return std::abs(gyroscopic) <= d.friction ? 0.0 : (gyroscopic > 0.0 ? 1.0 : -1.0);
+  return gyroscopic > 0.0 ? 1.0 : -1.0;
+}
+
+// N m, the torque the motor of a driven body produces: what holds w3 (rad/s) against the
+// gyroscopic torque (N m) and its own loads (d_a w3 + tau0 sign(w3)).
+inline double motor_torque(const Damping& d, double w3, double gyroscopic) {
+  return -gyroscopic + d.axial * w3 + d.friction * (w3 > 0.0 ? 1.0 : w3 < 0.0 ? -1.0 : 0.0);
+}
+
+// The damped body's extra columns: what its torques took away (each the balance of a
+// conserved quantity: energy_drift + dissipated_work = 0, and so on), and the motor's torque.
+inline void add_damping_columns(Trajectory& out, std::size_t n, bool driven) {
+  std::vector<const char*> names = {"dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"};
+  if (driven) names.push_back("motor_torque");
+  for (const char* name : names) {
+    out.extra.emplace_back(name, std::vector<double>{});
+    out.extra.back().second.reserve(n);
+  }
 }
 
 }  // namespace heavytop::detail
