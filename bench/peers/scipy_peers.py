@@ -117,6 +117,8 @@ def main():
                 tol, e = found
                 times = []
                 for _ in range(args.reps):
+                    if not times or times[-1] < 5e4:
+                        run(p, tol)  # untimed, as peers.cpp: the caches hold this method's code and data
                     t0 = time.process_time()  # CPU time, as peers.cpp
                     run(p, tol)
                     times.append((time.process_time() - t0) * 1e6)
