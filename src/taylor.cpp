@@ -137,19 +137,29 @@ struct OrdinaryBody {
   static Scales scales(const Body& body, const RigidBodyState& x0) { return scales_of(body, x0); }
 };
 
-// The plain state of rigid_body.hpp: q (body to fixed), w in body axes. 19 Cauchy products
-// per order: q (x) w (all 12 pairs q_i w_m), gamma (4), w x I w (3).
-struct Plain : OrdinaryBody {
+// The seven variables of the conservative sets: a quaternion in slots 0..3 (q, or SpinFactored's
+// p) and an angular velocity in 4..6 (body-axes w, or v1, v2, w3), as to_vector/from_vector
+// (rigid_body.hpp) hold them, the quaternion normalised on the way out. For SpinFactored
+// psi = 0 at the start (p = q, v = (w1, w2)), and its state read as a body (attitude R_p,
+// angular velocity (v1, v2, w3)) has the body's axis, the axis's rate (k' = v2 n1 - v1 n2) and
+// E, L_zeta, C w3 (all Rz-invariant for A == B).
+struct SevenVariables {
   static constexpr int kSize = 7, kWidth = 8;
   static constexpr bool kDamped = false;
+  static constexpr int kU1 = 4, kU2 = 5;  // the velocity components in d(k_zeta)/dt
+  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
+  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
+};
+
+// The plain state of rigid_body.hpp: q (body to fixed), w in body axes. 19 Cauchy products
+// per order: q (x) w (all 12 pairs q_i w_m), gamma (4), w x I w (3).
+struct Plain : OrdinaryBody, SevenVariables {
   static constexpr TaylorVariables kVariables = TaylorVariables::Plain;
   double e1, e2, e3, ka, kb;  // (B - C)/A, (C - A)/B, (A - B)/C (1), m g R / A, m g R / B (1/s^2)
 
   explicit Plain(const Body& b)
       : e1((b.B - b.C) / b.A), e2((b.C - b.A) / b.B), e3((b.A - b.B) / b.C), ka(b.mgR() / b.A),
         kb(b.mgR() / b.B) {}
-
-  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
 
   // Coefficients 1..p of every variable from row 0; gamma up to order p - 1.
   void coefficients(Jet& x, Gamma& g, int p) const {
@@ -183,19 +193,13 @@ struct Plain : OrdinaryBody {
       next[7] = 0.0;
     }
   }
-
-  // Body-to-fixed attitude and body-axes w of a state (the quaternion normalised).
-  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
-  static constexpr int kU1 = 4, kU2 = 5;  // the velocity components in d(k_zeta)/dt
 };
 
 // The general body of general_body.hpp (SPEC section 11) in the plain state: I w' = (I w) x w
 // + gamma x (m g c), with the full inertia tensor I and the centre of mass c anywhere in body
 // axes. 26 Cauchy products per order: q (x) w (12), gamma (all three components: 8), (I w) x w
 // (6, the series of L = I w being linear in w's). w' = I^-1 (...) is linear.
-struct General {
-  static constexpr int kSize = 7, kWidth = 8;
-  static constexpr bool kDamped = false;
+struct General : SevenVariables {
   static constexpr TaylorVariables kVariables = TaylorVariables::General;
   Eigen::Matrix3d inertia, inverse;  // kg m^2, I about O, and its inverse (body axes)
   Eigen::Vector3d weight;            // N m, m g c
@@ -205,8 +209,6 @@ struct General {
     const GeneralRigidBodySystem system(b);
     inertia = system.inertia, inverse = system.inverse, weight = system.weight;
   }
-
-  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
 
   void coefficients(Jet& x, Gamma& g, int p) const {
     for (int n = 0; n < p; ++n) {
@@ -248,8 +250,6 @@ struct General {
     }
   }
 
-  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
-  static constexpr int kU1 = 4, kU2 = 5;
   static ConservedQuantities conserved(const Body& body, const RigidBodyState& x) {
     return general_conserved_quantities(body, x);
   }
@@ -261,16 +261,11 @@ struct General {
 // For A == B, w3 is constant and psi drops out: v' = (C w3 / A) J v + (m g R / A) J gamma.
 // Slot 6 holds w3 (its series is the constant). 12 Cauchy products per order:
 // p (x) v (the 8 pairs p_i v_m) and gamma (4).
-struct SpinFactored : OrdinaryBody {
-  static constexpr int kSize = 7, kWidth = 8;
-  static constexpr bool kDamped = false;
+struct SpinFactored : OrdinaryBody, SevenVariables {
   static constexpr TaylorVariables kVariables = TaylorVariables::SpinFactored;
   double c_over_a, ka;  // C / A (1), m g R / A (1/s^2)
 
   explicit SpinFactored(const Body& b) : c_over_a(b.C / b.A), ka(b.mgR() / b.A) {}
-
-  // psi = 0 at the start: p = q, v = (w1, w2).
-  static std::array<double, 7> state_of(const RigidBodyState& rb) { return to_vector(rb); }
 
   void coefficients(Jet& x, Gamma& g, int p) const {
     const double nutation = c_over_a * x.c[0][6];  // rad/s, C w3 / A
@@ -298,11 +293,6 @@ struct SpinFactored : OrdinaryBody {
       next[7] = 0.0;
     }
   }
-
-  // The state in N: attitude R_p, "angular velocity" (v1, v2, w3). For A == B the axis, its
-  // rate (k' = v2 n1 - v1 n2) and E, L_zeta, C w3 of this state are the body's (Rz-invariant).
-  static RigidBodyState rigid_body(const std::array<double, 7>& x) { return from_vector(x); }
-  static constexpr int kU1 = 4, kU2 = 5;
 };
 
 // ---- A damped body (SPEC section 6) ------------------------------------------------------------
