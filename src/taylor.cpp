@@ -203,7 +203,7 @@ struct General : SevenVariables {
   static constexpr TaylorVariables kVariables = TaylorVariables::General;
   Eigen::Matrix3d inertia, inverse;  // kg m^2, I about O, and its inverse (body axes)
   Eigen::Vector3d weight;            // N m, m g c
-  mutable double L[kM + 1][3];       // the series of I w (kg m^2/s), filled order by order
+  mutable double L[kM + 1][3] = {};  // the series of I w (kg m^2/s), filled order by order
 
   explicit General(const Body& b) {
     const GeneralRigidBodySystem system(b);
