@@ -72,9 +72,10 @@ int run(int argc, char** argv) {
       }
     // No command: the report for the built-in example, a toy top.
     const std::string dir = "heavytop-report";
-    std::cout << "heavytop: the built-in example, a wooden toy top (60 g, 40 mm disc, centre of mass 25 mm "
-                 "above the tip) spun at 200 rad/s, started 0.05 rad off vertical.\n";
+    // The answer first, then what it is about and where the report went.
     std::cout << io::answer_text(analyse_top(example_toy_top(), example_motion()).answer) << "\n";
+    std::cout << "heavytop: that is the built-in example, a wooden toy top (60 g, 40 mm disc, centre of mass "
+                 "25 mm above the tip) spun at 200 rad/s, started 0.05 rad off vertical.\n";
     report::write_report(dir, example_toy_top(), example_motion(), std::nullopt);
     std::cout << "heavytop: wrote " << dir << "/report.html (open it in a browser); "
               << "`heavytop --help` lists the commands.\n";

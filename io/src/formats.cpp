@@ -248,6 +248,11 @@ std::string spin_text(double w) { return fmt::format("{:.6g} rad/s ({:.5g} rpm)"
 std::string lifetime_text(const Body& body, const InitialState& initial, const Lifetime& life) {
   std::ostringstream out;
   const Damping& d = body.damping;
+  // The answer first (SPEC 14): how long it stays up.
+  out << (life.fall_time ? fmt::format("Falls after {:.4g} s (its tilt passes {:.3g} degrees).\n", *life.fall_time,
+                                       life.max_tilt * 180.0 / M_PI)
+                         : fmt::format("Stays up for the {:.4g} s computed (its tilt stays below {:.3g} degrees).\n",
+                                       life.horizon, life.max_tilt * 180.0 / M_PI));
   out << fmt::format("Spin {} with axial damping d_a = {:g} N m s, friction tau0 = {:g} N m, transverse "
                      "damping d_t = {:g} N m s{}.\n",
                      spin_text(initial.spin), d.axial, d.friction, d.transverse,

@@ -1,7 +1,7 @@
 """heavytop: the heavy top (a rigid body turning about a fixed point O in uniform gravity,
 spinning fast about its axis), its approximate models, their stability and motion.
 
-Units are SI everywhere: kg, m, s, rad (rates rad/s). The conventions are SPEC.md's:
+Units are SI everywhere: kg, m, s, rad (rates rad/s). The conventions are those of docs/contract.md in heavytop's repository:
 
   Fixed frame (xi, eta, zeta), zeta vertical and up. Body frame: principal axes x, y, z
   through O, z the spin axis. k = the unit vector of the spin axis, and the paper's angles are
