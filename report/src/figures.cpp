@@ -220,11 +220,16 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
     largest_tilt = std::max(largest_tilt, tilt(c.nonlinear.theta[i], c.nonlinear.phi[i]));
   const double tilt_top = std::min(largest_tilt > 0.0 ? 1.25 * largest_tilt : 1e-3, std::numbers::pi) * 180.0 /
                           std::numbers::pi;
+  // Round ticks on both axes: rad at 1, 2 or 5 times a power of ten, about five of them.
+  const double rad_top = tilt_top * std::numbers::pi / 180.0;
+  const double decade = std::pow(10.0, std::floor(std::log10(rad_top / 5.0)));
+  const double rad_step = rad_top / 5.0 / decade < 2.0 ? decade : rad_top / 5.0 / decade < 5.0 ? 2.0 * decade : 5.0 * decade;
   std::string tilts = fmt::format(
-      "set title 'Tilt of the axis from the vertical: every model from the same start'\nset grid\n{0}"
-      "set yrange [0:{1}]\nset format y '%g'\nset ylabel 'tilt (degrees)'\nset y2tics\nset format y2 '%.3g'\n"
+      "set title 'Tilt of the axis from the vertical: every model from the same start'\nset grid\n"
+      "set key outside bottom center horizontal Left reverse width 2\n"
+      "set yrange [0:{0}]\nset format y '%g'\nset ylabel 'tilt (degrees)'\nset y2tics {1:g}\nset format y2 '%g'\n"
       "set link y2 via y*pi/180 inverse y*180/pi\nset y2label 'tilt (rad)'\nset xlabel 't (s)'\nplot ",
-      key, tilt_top);
+      tilt_top, rad_step);
   tilts += plot_list(files, "1:($7*180/pi)");
   figures.push_back(render("tilt", "The tilt of the axis from the upward vertical against time (degrees on the left, "
                            "rad on the right); the nonlinear body (black, drawn on top) is the truth.",

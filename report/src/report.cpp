@@ -390,7 +390,8 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram));
 
   std::ostringstream html;
-  const std::string title = fmt::format("{}: {}", source.empty() ? "the built-in example" : source, body_words(body));
+  const std::string title = fmt::format("{}: {}", source.empty() ? "The built-in example, a wooden toy top" : source,
+                                        body_words(body));
   html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop: " << html_escape(title)
        << "</title><style>" << kStyle << "</style>\n";
   // Classic scripts beside the page (file:// allows no module imports and no fetch()).
