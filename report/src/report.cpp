@@ -171,7 +171,7 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
     certificates += char('0' + int(v.lyapunov_certificate));
   }
   json certificate_names = json::array();
-  for (int k = 0; k <= int(LyapunovCertificate::None); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
+  for (int k = 0; k <= int(kLastLyapunovCertificate); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
   json points = json::array();
   for (std::size_t i = 0; i < diagram.verdicts.size(); ++i) {
     const auto p = grid_values(diagram.axes, i);
