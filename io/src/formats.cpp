@@ -204,7 +204,7 @@ std::string normal_form_text(const LyapunovVerdict& v, double spin, const std::v
   const ResonanceDistance near = resonance_distance(nf);
   std::string text = fmt::format(
       "  Normal form (order 4): w1 = {:.6g}, w2 = {:.6g} rad/s; c20 = {:.6g}, c11 = {:.6g}, c02 = {:.6g}; "
-      "D = {:.6g} ({:.3g} of its terms){}\n",
+      "D = {:.6g} (|D| = {:.3g} of |c20| w2^2 + |c11| w1 w2 + |c02| w1^2; 0 would be undecided){}\n",
       nf.w1, nf.w2, nf.c20, nf.c11, nf.c02, nf.D, nf.D_scale > 0.0 ? std::abs(nf.D) / nf.D_scale : 0.0,
       nf.resonance == 2 || nf.resonance == 3
           ? fmt::format("; at the {} resonance{}", resonance_name(nf.resonance),
@@ -214,8 +214,7 @@ std::string normal_form_text(const LyapunovVerdict& v, double spin, const std::v
                       nf.w1 / nf.w2, near.distance, near.nearest);
   for (const auto& i : intervals)
     if (spin >= i.lo && (!i.hi || spin <= *i.hi)) {
-      text += fmt::format("; proven stable for spins from {:.6g} to {} rad/s around this one", i.lo,
-                          i.hi ? fmt::format("{:.6g}", *i.hi) : std::string("any"));
+      text += fmt::format("; the spins proven stable around this one: {} rad/s", intervals_text({i}));
       break;
     }
   text += ".\n";
