@@ -6,12 +6,15 @@
 // RigidBodySystem, not the chart), E7's worked example, D = 0 and the resonances.
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <vector>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <boost/numeric/odeint.hpp>
 #include <gtest/gtest.h>
 
@@ -339,6 +342,160 @@ TEST(NormalForm, StableSpinsAgreeWithTheVerdictAtEverySpin) {
       EXPECT_EQ(inside, lyapunov_stability(b, w).verdict == V::Stable) << c.A << " " << c.B << " " << c.C << " w0 " << w;
     }
   }
+}
+
+// ---- Long runs at the resonances, the slow exchange at 1:3, a falling control ---------------
+
+/// Samples of the chart point of the full body's motion from z0 on the leaf L, every dt (s) up
+/// to t_end, until |q| > stop (then the last sample is the first beyond it).
+std::vector<Eigen::Vector4d> nonlinear_chart_run(const Body& b, double L, const Eigen::Vector4d& z0, double dt,
+                                                 double t_end, double stop = 2.0) {
+  RigidBodyVector x = body_state(b, L, z0);
+  namespace ode = boost::numeric::odeint;
+  auto stepper = ode::make_dense_output(1e-12, 1e-12, ode::runge_kutta_dopri5<RigidBodyVector>());
+  stepper.initialize(x, 0.0, dt);
+  std::vector<Eigen::Vector4d> out{z0};
+  RigidBodySystem sys{b};
+  for (std::size_t i = 1; i * dt <= t_end; ++i) {
+    const double t = i * dt;
+    while (stepper.current_time() < t) stepper.do_step(sys);
+    stepper.calc_state(t, x);
+    out.push_back(chart_point(b, L, x));
+    if (out.back().head<2>().norm() > stop || !std::isfinite(out.back()[0])) break;
+  }
+  return out;
+}
+
+/// The largest |q| = sin(tilt) that the linear normal-form motion from zeta0 can reach.
+double linear_bound(const NormalForm& nf, const Eigen::Vector4d& zeta0) {
+  double bound = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    Eigen::Matrix2d block;
+    block << nf.T(0, i), nf.T(0, i + 2), nf.T(1, i), nf.T(1, i + 2);
+    bound += std::hypot(zeta0[i], zeta0[i + 2]) * Eigen::JacobiSVD<Eigen::Matrix2d>(block).singularValues()[0];
+  }
+  return bound;
+}
+
+TEST(NormalForm, LongRunsAtOneToTwoAndOneToThreeStayOnTheLinearBoundAndAnUnstableControlFalls) {
+  const Body b = make_body(1.0, 1.2, 0.8, 1.0);
+  for (double ratio : {2.0, 3.0}) {
+    const double w0 = spin_at_ratio(b, ratio == 2.0 ? 2.7 : 4.0, ratio == 2.0 ? 4.0 : 6.0, ratio);
+    const NormalForm nf = *birkhoff_normal_form(b, w0);
+    ASSERT_EQ(nf.resonance, int(ratio));
+    const double unit = 1.0 / (nf.T.row(0).squaredNorm() + nf.T.row(1).squaredNorm());
+    const double r = 1e-4 * unit;  // tilts of about 1e-2 rad
+    const Eigen::Vector4d zeta0(std::sqrt(2.0 * r), std::sqrt(2.0 * r), 0.0, 0.0);
+    const double slow = 2.0 * std::numbers::pi / std::min(nf.w1, nf.w2), periods = 1e4;
+    const auto run = nonlinear_chart_run(b, nf.L, nf.T * zeta0, slow / 48.0, periods * slow);
+    double largest = 0.0;
+    for (const auto& z : run) largest = std::max(largest, z.head<2>().norm());
+    const double bound = linear_bound(nf, zeta0);
+    std::printf("1:%g at w0 = %.12g: %g periods (%.0f s), max |q| %.6g, linear bound %.6g (ratio %.4f)\n", ratio,
+                w0, periods, periods * slow, largest, bound, largest / bound);
+    EXPECT_EQ(run.size(), std::size_t(periods * 48.0) + 1);
+    EXPECT_LT(largest, 1.05 * bound);
+  }
+  // The control: the same body below its linear-stability threshold (a Krein collision passed)
+  // grows exponentially and falls.
+  const double w0 = 2.3;
+  ASSERT_FALSE(linear_stability(linear_model(LinearModelKind::Linearized, b), w0).stable);
+  ASSERT_FALSE(birkhoff_normal_form(b, w0).has_value());
+  const auto fall = nonlinear_chart_run(b, b.C * w0, Eigen::Vector4d(1e-3, 0.0, 0.0, 0.0), 0.05, 2000.0, std::sin(1.0));
+  EXPECT_GT(fall.back().head<2>().norm(), std::sin(1.0));
+  std::printf("control at w0 = 2.3: |q| passes sin(1 rad) at t = %.1f s\n", 0.05 * (fall.size() - 1));
+}
+
+struct Exchange {
+  double excursion;  ///< J s, the largest |r1 - r1(0)| the resonant normal form predicts
+  double deviation;  ///< J s, the largest |measured - predicted| (both averaged per slow period)
+  double r;          ///< J s, the starting actions
+};
+
+/// The 1:3 exchange of body (1, 1.2, 0.8, 1) at its exact 1:3 spin, from r1 = r2 = action x (the
+/// action of a unit tilt), over 0.4 / action slow periods (the actions' slow cycle scales as 1/r).
+Exchange one_to_three_exchange(double action) {
+  const Body b = make_body(1.0, 1.2, 0.8, 1.0);
+  const double w0 = spin_at_ratio(b, 4.0, 6.0, 3.0);
+  const NormalForm nf = *birkhoff_normal_form(b, w0);
+  EXPECT_EQ(nf.resonance, 3);
+  EXPECT_GT(nf.w1, nf.w2);  // w1 = 3 w2: the harmonic a1 + 3 a2
+  if (nf.resonance != 3 || !(nf.w1 > nf.w2)) return {0.0, 1.0, 1.0};
+  // chi, the phase of the resonant harmonic (a13/2) e^{i chi} on the torus (1, 1).
+  std::complex<double> F = 0.0;
+  constexpr int N = 8;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      const double a1 = 2 * std::numbers::pi * i / N, a2 = 2 * std::numbers::pi * j / N;
+      const Eigen::Vector4d z = nf.T * Eigen::Vector4d(std::sqrt(2.0) * std::cos(a1), std::sqrt(2.0) * std::cos(a2),
+                                                       std::sqrt(2.0) * std::sin(a1), std::sqrt(2.0) * std::sin(a2));
+      F += reduced_quartic(b, nf.L, z) * std::polar(1.0, -(a1 + 3 * a2)) / double(N * N);
+    }
+  EXPECT_NEAR(2.0 * std::abs(F), *nf.a13, 1e-12 * *nf.a13);
+  const double chi = std::arg(F);
+  // Start on the torus r1 = r2 = r with psi = a1 + 3 a2 + chi = pi/2 (the fastest exchange).
+  const double unit = 1.0 / (nf.T.row(0).squaredNorm() + nf.T.row(1).squaredNorm());
+  const double r = action * unit, a2 = (std::numbers::pi / 2 - chi) / 3.0;
+  const Eigen::Vector4d zeta0(std::sqrt(2 * r), std::sqrt(2 * r) * std::cos(a2), 0.0, std::sqrt(2 * r) * std::sin(a2));
+  // The resonant normal form's own motion: r1' = -a13 sqrt(r1 r2^3) sin psi, r2' = 3 r1',
+  // psi' = -dH/dr1 - 3 dH/dr2 (RK4); with a13 = 0 the actions would not move at all.
+  auto normal_form_r1 = [&](double T, double h) {
+    std::vector<double> r1s;
+    std::array<double, 3> y{r, r, std::numbers::pi / 2};
+    auto f = [&](const std::array<double, 3>& s) {
+      const double r1 = s[0], r2 = s[1], p = s[2], a = *nf.a13;
+      const double dr1 = -a * std::sqrt(r1 * r2 * r2 * r2) * std::sin(p);
+      const double dH1 = nf.w1 + 2 * nf.c20 * r1 + nf.c11 * r2 + 0.5 * a * std::sqrt(r2 * r2 * r2 / r1) * std::cos(p);
+      const double dH2 = -nf.w2 + nf.c11 * r1 + 2 * nf.c02 * r2 + 1.5 * a * std::sqrt(r1 * r2) * std::cos(p);
+      return std::array<double, 3>{dr1, 3 * dr1, -dH1 - 3 * dH2};
+    };
+    for (double t = 0; t <= T; t += h) {
+      r1s.push_back(y[0]);
+      auto add = [](std::array<double, 3> u, const std::array<double, 3>& v, double c) {
+        for (int i = 0; i < 3; ++i) u[i] += c * v[i];
+        return u;
+      };
+      const auto k1 = f(y), k2 = f(add(y, k1, h / 2)), k3 = f(add(y, k2, h / 2)), k4 = f(add(y, k3, h));
+      for (int i = 0; i < 3; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    }
+    return r1s;
+  };
+  const double slow = 2.0 * std::numbers::pi / nf.w2, T = 0.4 / action * slow;
+  const auto run = nonlinear_chart_run(b, nf.L, nf.T * zeta0, slow / 48.0, T);
+  const Eigen::Matrix4d Tinv = nf.T.inverse();
+  // r1 averaged over each slow period (at exact 1:3 every fast harmonic has that period).
+  std::vector<double> measured;
+  for (std::size_t k = 0; (k + 1) * 48 < run.size(); ++k) {
+    double sum = 0.0;
+    for (std::size_t i = k * 48; i < (k + 1) * 48; ++i) {
+      const Eigen::Vector4d zeta = Tinv * run[i];
+      sum += 0.5 * (zeta[0] * zeta[0] + zeta[2] * zeta[2]);
+    }
+    measured.push_back(sum / 48.0);
+  }
+  const auto predicted_all = normal_form_r1(T, slow / 48.0);
+  double max_dev = 0.0, excursion = 0.0;
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    double mean = 0.0;  // the prediction averaged over the same slow period
+    for (std::size_t i = k * 48; i < (k + 1) * 48; ++i) mean += predicted_all[i] / 48.0;
+    max_dev = std::max(max_dev, std::abs(measured[k] - mean));
+    excursion = std::max(excursion, std::abs(mean - r));
+  }
+  const double measured_excursion = std::abs(*std::max_element(measured.begin(), measured.end(), [&](double x, double y) {
+    return std::abs(x - r) < std::abs(y - r);
+  }) - r);
+  std::printf("1:3 exchange from r = %g: a13 = %.6g, r1 moves by %.4g of r (normal form %.4g), largest difference "
+              "%.3g of r\n", action, *nf.a13, measured_excursion / r, excursion / r, max_dev / r);
+  return {excursion, max_dev, r};
+}
+
+TEST(NormalForm, SlowExchangeAtOneToThreeFollowsTheResonantCoefficient) {
+  const Exchange large = one_to_three_exchange(3e-4), small = one_to_three_exchange(1e-4);
+  EXPECT_GT(small.excursion, 1e-3 * small.r);            // the exchange is there (none with a13 = 0)
+  EXPECT_LT(small.deviation, 0.05 * small.excursion);    // the resonant coefficient predicts it,
+  const double order = (large.deviation / large.r) / (small.deviation / small.r);
+  EXPECT_GT(order, 2.0);                                 // to O(r) (3x the action, 3x the relative error)
+  EXPECT_LT(order, 4.5);
 }
 
 }  // namespace
