@@ -89,8 +89,10 @@ LyapunovVerdict lyapunov_stability(const Body& body, double spin);
 /// in closed form; the KAM pieces (index 2) exclude the spins where D = 0, w1 = w2, or 1:3
 /// with Markeev's inequality failing, located by sign changes on a geometric grid of
 /// kKamScanPoints spins per piece (an unbounded piece scanned up to 1e4 times its start or the
-/// body's natural spin sqrt(|m g R| / min(A, B, C)), beyond which no such spin is sought) and
-/// refined by bisection to rounding. Two such spins closer than the grid's step can be missed.
+/// body's natural spin sqrt(|m g R| / min(A, B, C)): at large spins gravity fades, w1/w2 and
+/// D / D_scale tend to the free body's limits, reached to 4 digits within 1e2 of the start in
+/// every body tried, so no exception is sought beyond) and refined by bisection to rounding.
+/// Two such spins closer than the grid's step can be missed.
 std::vector<SpinInterval> lyapunov_stable_spin_intervals(const Body& body);
 
 /// Spins per KAM piece scanned by lyapunov_stable_spin_intervals for D = 0 and resonances.
