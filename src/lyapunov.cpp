@@ -64,6 +64,13 @@ bool grows_exponentially(const Body& body, double spin) {
 LyapunovVerdict kam_verdict(const Body& body, double spin, LyapunovVerdict v) {
   using K = LyapunovVerdictKind;
   using Cert = LyapunovCertificate;
+  // At the ends of the linearized model's stable spins two frequencies meet in a Jordan block
+  // (a Krein collision): there the eigen-decomposition still splits them by ~sqrt(eps), so the
+  // linear model's own verdict, not the frequencies, says that this is the 1:1 case.
+  if (!linear_stability(linear_model(LinearModelKind::Linearized, body), spin).stable)
+    return verdict(std::move(v), K::Undecided, Cert::None,
+                   "index 2 at the boundary of linear stability (w1 = w2, a Jordan block): Arnold's "
+                   "theorem does not apply, and higher orders are not analysed");
   v.normal_form = birkhoff_normal_form(body, spin);
   if (!v.normal_form)
     return verdict(std::move(v), K::Undecided, Cert::None,

@@ -344,6 +344,27 @@ TEST(NormalForm, StableSpinsAgreeWithTheVerdictAtEverySpin) {
   }
 }
 
+TEST(NormalForm, EndsOfTheLinearlyStableSpinsAreTheOneToOneCaseUndecided) {
+  // At a Krein collision the computed frequencies differ by ~sqrt(eps) only: the verdict there
+  // must be the 1:1 case (undecided), as the linear model's Jordan block says, not kam.
+  const Case bodies[] = {{1.0, 1.2, 1.5, 1.0, 0.0}, {1.0, 1.2, 0.8, 1.0, 0.0}, {1.0, 1.5, 0.5, 1.0, 0.0}};
+  for (const Case& c : bodies) {
+    const Body b = make_body(c.A, c.B, c.C, c.mgR);
+    for (const SpinInterval& i : stable_spin_intervals(linear_model(LinearModelKind::Linearized, b))) {
+      const LyapunovVerdict v = lyapunov_stability(b, i.lo);
+      if (v.energy_index != 2) continue;
+      EXPECT_EQ(v.verdict, V::Undecided) << c.C << " at " << i.lo;
+      EXPECT_EQ(v.certificate, Cert::None) << c.C << " at " << i.lo;
+      EXPECT_FALSE(v.normal_form.has_value());
+      EXPECT_EQ(lyapunov_stability(b, i.lo * (1.0 + 1e-9)).certificate, Cert::Kam) << c.C << " above " << i.lo;
+    }
+    for (const SpinInterval& i : lyapunov_stable_spin_intervals(b)) {
+      if (i.lo_included) { EXPECT_EQ(lyapunov_stability(b, i.lo).verdict, V::Stable); }
+      if (i.hi && i.hi_included) { EXPECT_EQ(lyapunov_stability(b, *i.hi).verdict, V::Stable); }
+    }
+  }
+}
+
 // ---- Long runs at the resonances, the slow exchange at 1:3, a falling control ---------------
 
 /// Samples of the chart point of the full body's motion from z0 on the leaf L, every dt (s) up
