@@ -22,7 +22,8 @@ namespace {
 
 constexpr LyapunovCertificate kCertificates[] = {
     LyapunovCertificate::EnergyCasimir, LyapunovCertificate::Chetaev,           LyapunovCertificate::CriticalQuartic,
-    LyapunovCertificate::OddIndex,      LyapunovCertificate::LinearInstability, LyapunovCertificate::None};
+    LyapunovCertificate::OddIndex,      LyapunovCertificate::LinearInstability, LyapunovCertificate::None,
+    LyapunovCertificate::Kam,           LyapunovCertificate::KamMarkeev,        LyapunovCertificate::Resonance};
 constexpr std::string_view kVerdictColumns[] = {"first-order", "body-fixed", "linearized", "lyapunov"};
 constexpr const char* kFormatName = "heavytop stability map 1";
 constexpr std::size_t kRowsPerBlock = 1 << 20;  // of a map file, written or read at a time
@@ -165,7 +166,7 @@ void pack_verdicts(const std::vector<SweepVerdict>& verdicts, std::string& out) 
 std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
   if (bytes.size() % kPackedVerdictSize != 0) throw Failure("packed verdicts: a record is torn");
   std::vector<SweepVerdict> out(bytes.size() / kPackedVerdictSize);
-  constexpr auto kLast = static_cast<unsigned char>(LyapunovCertificate::None);
+  constexpr auto kLast = static_cast<unsigned char>(kLastLyapunovCertificate);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const auto* r = reinterpret_cast<const unsigned char*>(bytes.data() + i * kPackedVerdictSize);
     if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || r[5] > 2)
@@ -346,7 +347,7 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     const std::string name = c < 4 ? std::string(kVerdictColumns[c]) : c == 4 ? "lyapunov_certificate" : "nonlinear";
     read_column(name, c == 4 ? hid_t(certificates) : H5T_NATIVE_UINT8, points, column);
     for (std::size_t i = 0; i < points; ++i) {
-      if (column[i] > (c == 4 ? std::uint8_t(LyapunovCertificate::None) : 1))
+      if (column[i] > (c == 4 ? std::uint8_t(kLastLyapunovCertificate) : 1))
         throw InvalidInput(key, fmt::format("{} (dataset '{}': a value out of range)", bad, name));
       SweepVerdict& v = map.verdicts[i];
       if (c < 3) v.linear[c] = column[i];

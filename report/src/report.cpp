@@ -172,7 +172,7 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
     certificates += char('0' + int(v.lyapunov_certificate));
   }
   json certificate_names = json::array();
-  for (int k = 0; k <= int(LyapunovCertificate::None); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
+  for (int k = 0; k <= int(kLastLyapunovCertificate); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
   json points = json::array();
   for (std::size_t i = 0; i < diagram.verdicts.size(); ++i) {
     const auto p = grid_values(diagram.axes, i);
@@ -443,10 +443,16 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       io::intervals_text(lyapunov.intervals),
       lyapunov.superfast ? fmt::format("from {:.6g} rad/s", *lyapunov.superfast) : std::string("at no spin"),
       v.certificate == LyapunovCertificate::CriticalQuartic
-          ? " At the boundary of (9) the linear models grow (a Jordan block: a double frequency whose motion grows "
-            "like t), but the real symmetric top does not: started &delta; off vertical its tilt stays below about "
-            "&radic;(2&delta;) (erratum E2)."
-          : "",
+          ? std::string(" At the boundary of (9) the linear models grow (a Jordan block: a double frequency whose motion "
+                        "grows like t), but the real symmetric top does not: started &delta; off vertical its tilt stays "
+                        "below about &radic;(2&delta;) (erratum E2).")
+      : v.normal_form
+          ? fmt::format(" Birkhoff normal form (order 4): w1 = {:.6g}, w2 = {:.6g} rad/s, c20 = {:.6g}, c11 = {:.6g}, "
+                        "c02 = {:.6g}, D = {:.6g}{}; a KAM verdict holds for perturbations small enough (no size given).",
+                        v.normal_form->w1, v.normal_form->w2, v.normal_form->c20, v.normal_form->c11, v.normal_form->c02,
+                        v.normal_form->D,
+                        v.normal_form->a13 ? fmt::format(", at 1:3 with a13 = {:.6g}", *v.normal_form->a13) : std::string())
+          : std::string(),
       wander.max_tilt ? fmt::format(" From the given start the axis tilts at most {:.4g} rad ({:.3g} degrees; {}).",
                                     *wander.max_tilt, *wander.max_tilt * 180.0 / std::numbers::pi,
                                     wander.closed_form ? "closed form"
