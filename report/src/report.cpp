@@ -136,6 +136,25 @@ std::string base64(std::string_view bytes) {
   return out;
 }
 
+/// Whether the page carries a mesh part's file (its own triangles, parsed by three.js's loader
+/// for STL, OBJ or PLY), else why not (its format "stl", "obj" or "ply" in `format`).
+bool mesh_carried(const DrawnPart& part, std::string& format, std::string& why) {
+  std::string extension = fs::path(part.mesh_file).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  std::error_code ec;
+  const auto bytes = fs::file_size(part.mesh_file, ec);
+  if (extension != ".stl" && extension != ".obj" && extension != ".ply") {
+    why = fmt::format("a {} file, which the page cannot read", extension.empty() ? "mesh" : extension);
+    return false;
+  }
+  if (!ec && bytes > kMaxDrawnMeshBytes) {
+    why = fmt::format("{:.0f} MB, more than the page carries", double(bytes) / 1e6);
+    return false;
+  }
+  format = extension.substr(1);
+  return true;
+}
+
 /// The parts as the page draws them (report/web/src/main.js buildBody()): a solid's shape and
 /// sizes (m); a mesh's file bytes (base64) with its format (by the file's extension) and scale,
 /// or for a file too large to carry (or of a format the page's loaders do not read) its bounding
@@ -154,14 +173,11 @@ nlohmann::json parts_json(const std::vector<DrawnPart>& parts) {
       out.push_back(p);
       continue;
     }
-    std::string extension = fs::path(part.mesh_file).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    std::error_code ec;
-    const auto bytes = fs::file_size(part.mesh_file, ec);
     const std::string key = fmt::format("body.part[{}] ({})", i, part.label);
     json p = {{"shape", "mesh"}, {"label", part.label}, {"scale", part.scale}};
-    if (!ec && bytes <= kMaxDrawnMeshBytes && (extension == ".stl" || extension == ".obj" || extension == ".ply")) {
-      p["format"] = extension.substr(1);
+    std::string format, why;
+    if (mesh_carried(part, format, why)) {
+      p["format"] = format;
       p["data"] = base64(io::read_text_file(part.mesh_file, key, kMaxDrawnMeshBytes, "a mesh file"));
     } else {
       const TriangleMesh mesh = io::read_mesh(part.mesh_file, part.scale, key);
@@ -169,9 +185,7 @@ nlohmann::json parts_json(const std::vector<DrawnPart>& parts) {
       for (const auto& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
       p["format"] = "box";
       p["box"] = {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}};
-      p["why"] = !ec && bytes > kMaxDrawnMeshBytes
-                     ? fmt::format("{:.0f} MB, more than the page carries", double(bytes) / 1e6)
-                     : fmt::format("a {} file, which the page cannot read", extension.empty() ? "mesh" : extension);
+      p["why"] = why;
     }
     out.push_back(p);
   }
@@ -274,10 +288,22 @@ std::string view_html(const Comparison& c, const EquivalentEllipsoid& shape, con
             (shape.note.empty() ? std::string() : fmt::format(" (not to scale: {})", html_escape(shape.note))) + ".";
   } else {
     std::string names;
-    for (std::size_t i = 0; i < parts.size(); ++i)
-      names += fmt::format("{}{}", i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ", html_escape(parts[i].label));
-    drawn = fmt::format("The body is drawn as its {}: {}, to scale at their places on the spin axis.",
-                        parts.size() == 1 ? "part" : fmt::format("{} parts", parts.size()), names);
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      std::string what;
+      if (const auto& solid = parts[i].solid) {
+        what = fmt::format("a {}", name(solid->shape));
+        if (solid->shape == PartShape::Cone) what += solid->apex_up ? " (point up)" : " (point down)";
+      } else {
+        std::string format, why;
+        what = mesh_carried(parts[i], format, why)
+                   ? fmt::format("the mesh <code>{}</code> (its own triangles)", html_escape(parts[i].label))
+                   : fmt::format("the mesh <code>{}</code> (drawn as its bounding box: {})", html_escape(parts[i].label),
+                                 html_escape(why));
+      }
+      names += fmt::format("{}{}", i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ", what);
+    }
+    drawn = fmt::format("The body is drawn as it is made, to scale and where the configuration puts {}: {}.",
+                        parts.size() == 1 ? "it" : "each part", names);
   }
   std::string boxes;
   for (const auto& m : c.models)

@@ -209,11 +209,13 @@ function buildBody(D) {
   const marker = new Mesh(new SphereGeometry(size / 18, 16, 8), new MeshStandardMaterial({ color: 0xd62728 }));
   marker.position.set(a * 1.02, 0, zc);
   group.add(marker);
-  const spindle = new Mesh(new CylinderGeometry(size / 40, size / 40, zTop - zBottom, 16).rotateX(Math.PI / 2).translate(0, 0, 0.5 * (zTop + zBottom)),
+  // A top's spindle starts inside its point (a flat end at O would dip below it when tilted).
+  const hPoint = Math.min(0.35 * zc, size / 3), zLow = zc > 0 ? 0.9 * hPoint : zBottom;
+  const spindle = new Mesh(new CylinderGeometry(size / 40, size / 40, zTop - zLow, 16).rotateX(Math.PI / 2).translate(0, 0, 0.5 * (zTop + zLow)),
                            new MeshStandardMaterial({ color: 0x9aa3ab, metalness: 0.5, roughness: 0.35 }));
   group.add(spindle);
   if (zc > 0) {  // the top's own point, on O
-    const h = Math.min(0.35 * zc, size / 3);
+    const h = hPoint;
     group.add(new Mesh(new ConeGeometry(h / 2.2, h, 32).rotateX(-Math.PI / 2).translate(0, 0, h / 2),
                        new MeshStandardMaterial({ color: 0x6b737a, metalness: 0.5, roughness: 0.4 })));
   }
@@ -400,7 +402,7 @@ function buildView() {
   // Cameras: an oblique view that a mouse can turn, framing the body over the whole motion (the
   // box of both the true and the exaggerated attitudes, the floor's centre and O); and an inset
   // from straight above on the tip (xi to the right, eta up: the static figure's "seen from above").
-  const box = new Box3(new Vector3(0, 0, Math.min(...floors)), new Vector3(0, 0, 0));
+  const box = new Box3(new Vector3(0, 0, Math.min(...floors)), new Vector3(0, 0, D.body.length < 0 ? size / 4 : 0));
   for (const e of extents) box.expandByPoint(e.lo).expandByPoint(e.hi);
   const centre = box.getCenter(new Vector3()), radius = Math.max(0.5 * box.getSize(new Vector3()).length(), 1e-9);
   const camera = new PerspectiveCamera(35, 1, radius / 100, radius * 100);
