@@ -3,7 +3,11 @@
 // Loads each REPORT_DIR/report.html from file:// and checks what a student would: every request is
 // a local file (any other request fails the test), no console errors, the WebGL view draws and
 // animates, pause stops it, scrubbing moves it, the overlays show, every figure and plot loads,
-// the explorer answers a click. Screenshots go to OUT_DIR/NAME-*.png. Exit 0 when all pass.
+// the explorer answers a click; the body is drawn as it is made (each part's geometry in the scene,
+// at its place and size, a mesh with its file's own triangles; the ellipsoid only for a body given
+// by its moments), the floor is below its lowest point, the camera sees all of it over the whole
+// motion, and "exaggerate tilt x10" draws the tilt ten times as large (and back). Screenshots go to
+// OUT_DIR/NAME-*.png (NAME-view, NAME-exaggerated, NAME-overlays, ...). Exit 0 when all pass.
 const puppeteer = require("puppeteer-core");
 const fs = require("fs");
 const path = require("path");
@@ -109,11 +113,17 @@ async function checkPage(browser, name, reportDir) {
   const drawn = await page.evaluate(() => {
     const v = window.heavytopView, D = window.HEAVYTOP_REPORT;
     const inScene = v.shapes.map((s) => { const o = v.scene.getObjectByProperty("uuid", s.uuid); return !!o && o.visible && o.isMesh; });
-    // A binary STL's own triangle count (bytes 80..83), from the bytes the page carries.
+    // The file's own triangle count, from the bytes the page carries: a binary STL's bytes
+    // 80..83, an OBJ's faces (fans of n - 2), an ASCII PLY's "element face" (of triangles).
     const stl = D.parts.map((p) => {
-      if (p.format !== "stl") return null;
-      const b = Uint8Array.from(atob(p.data.slice(0, 200)), (c) => c.charCodeAt(0));
-      return new TextDecoder().decode(b.subarray(0, 5)) === "solid" ? null : new DataView(b.buffer).getUint32(80, true);
+      if (!p.data) return null;
+      const b = Uint8Array.from(atob(p.data), (c) => c.charCodeAt(0)), text = () => new TextDecoder().decode(b);
+      if (p.format === "stl")
+        return new TextDecoder().decode(b.subarray(0, 5)) === "solid" ? text().split("endfacet").length - 1 : new DataView(b.buffer).getUint32(80, true);
+      if (p.format === "obj")
+        return text().split("\n").filter((l) => /^f\s/.test(l)).reduce((n, l) => n + l.trim().split(/\s+/).length - 3, 0);
+      if (p.format === "ply") { const m = /element face (\d+)/.exec(text().slice(0, 2000)); return m ? +m[1] : null; }
+      return null;
     });
     return { shapes: v.shapes.map((s) => ({ ...s, data: undefined })), parts: D.parts.map((p) => ({ ...p, data: undefined })), inScene, stl };
   });
@@ -145,7 +155,7 @@ async function checkPage(browser, name, reportDir) {
     const m = await page.evaluate(() => window.heavytopView.measure(80));
     const D = await page.evaluate(() => ({ length: window.HEAVYTOP_REPORT.body.length }));
     const size = Math.max(...drawn.shapes.map((s) => (s.max ? Math.max(...s.max.map(Math.abs), ...s.min.map(Math.abs)) : Math.max(...s.semi_axes, Math.abs(s.centre)))));
-    check(`${what}: the floor is below the body's lowest point`, m.floor <= m.lowest + 1e-9 * size,
+    check(`${what}: the floor is below the body's lowest point`, m.floor <= m.lowest + 1e-6 * size,  // float32 vertices
           `floor ${m.floor.toPrecision(4)} m, lowest point ${m.lowest.toPrecision(4)} m over ${m.times + 1} times`);
     if (D.length > 0 && m.lowest >= 0) check(`${what}: a top above its tip stands on the floor at O`, m.floor === 0, `floor ${m.floor}`);
     check(`${what}: the body stays in the camera's view`, m.outside === 0, `${m.outside} corners of its box outside`);
@@ -157,7 +167,7 @@ async function checkPage(browser, name, reportDir) {
   await page.click("#exaggerate");
   await sleep(300);
   const magnified = await grab(), vx = await view();
-  const label = await page.$eval("label.exaggerate", (el) => el.textContent);
+  const label = await page.$eval("label.exaggerate", (el) => el.textContent.replace(/\s+/g, " ").trim());
   check("the tilt toggle is labelled as not to scale", /exaggerate tilt x10/.test(label) && /not to scale/.test(label), label);
   check("exaggerating the tilt changes the picture", plain !== magnified && vx.exaggerated);
   check("the drawn tilt is 10 times the true one (at most pi)", near(vx.drawnTilt, Math.min(10 * vx.tilt, Math.PI), 1e-6) && near(vt.tilt, vx.tilt, 1e-12),
