@@ -310,7 +310,12 @@ function buildView() {
     }
     return { lo, hi };
   };
-  const extents = [extentOf(false), extentOf(true)];
+  // A body never near the vertical (the horizontal gyroscope) would only be drawn upside down:
+  // no exaggeration for it.
+  let leastTilt = Math.PI;
+  for (let i = 0; i < n; i++) leastTilt = Math.min(leastTilt, Math.acos(Math.max(-1, Math.min(1, axisOf(D.nonlinear.theta[i], D.nonlinear.phi[i], v).z))));
+  const exaggerable = EXAGGERATION * leastTilt < 0.9 * Math.PI;
+  const truth = extentOf(false), extents = [truth, exaggerable ? extentOf(true) : truth];
   const floorOf = (ext) => (ext.lo.z >= -1e-3 * size ? 0 : ext.lo.z - 0.04 * size);
   const floors = extents.map(floorOf);
 
@@ -505,7 +510,14 @@ function buildView() {
     placeInset();
     draw();
   }
-  if (exaggerateBox) exaggerateBox.addEventListener("change", () => setExaggerated(exaggerateBox.checked));
+  if (exaggerateBox && !exaggerable) {
+    exaggerateBox.disabled = true;
+    const why = document.createElement("span");
+    why.id = "exaggerate-off";
+    why.textContent = ` Off for this body: its axis is never nearer the vertical than ${fmt((leastTilt * 180) / Math.PI, 3)} degrees, ` +
+      `so ten times its tilt would only draw it upside down.`;
+    exaggerateBox.parentElement.appendChild(why);
+  } else if (exaggerateBox) exaggerateBox.addEventListener("change", () => setExaggerated(exaggerateBox.checked));
   placeInset();
   Object.defineProperty(state, "scene", { value: scene, enumerable: false });  // (the test looks for the parts in it)
   window.heavytopView = state;  // for a reader's console (and the browser test's logs)
