@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The order-4 Birkhoff normal form of the heavy top's upright permanent rotation (SPEC
-/// section 7, shared/paper-notes.md E7, derived in docs/lyapunov.md), the input of Arnold's
+/// section 7, the paper notes' E7, derived in docs/lyapunov.md), the input of Arnold's
 /// theorem for the asymmetric body of energy index 2.
 ///
 /// The reduced system: the symplectic leaf Pi.gamma = L = C w0, |gamma| = 1 of the
