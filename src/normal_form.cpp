@@ -88,6 +88,8 @@ double reduced_hamiltonian(const Body& body, double L, const Eigen::Vector4d& z)
 }
 
 std::optional<NormalForm> birkhoff_normal_form(const Body& body, double spin) {
+  validate(body);
+  refuse_general(body, "the normal form");
   if (!std::isfinite(spin)) throw InvalidInput("motion.spin", "must be a finite number");
   NormalForm nf;
   nf.L = body.C * spin;

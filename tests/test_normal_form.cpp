@@ -1,5 +1,5 @@
-// The order-4 Birkhoff normal form of the asymmetric heavy top (SPEC section 7, paper-notes
-// E7, docs/lyapunov.md) and the KAM verdicts it gives, each against an independent route:
+// The order-4 Birkhoff normal form of the asymmetric heavy top (SPEC section 7, the paper
+// notes' E7, docs/lyapunov.md) and the KAM verdicts it gives, each against an independent route:
 // the chart's expansion against the exact reduced Hamiltonian, the diagonalisation against the
 // linearized model's frequencies, the coefficients against a closed form at A = B, the
 // predicted frequency shifts against long nonlinear runs of the full rigid body (odeint on

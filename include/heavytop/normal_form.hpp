@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The order-4 Birkhoff normal form of the heavy top's upright permanent rotation (SPEC
-/// section 7, shared/paper-notes.md E7, derived in docs/lyapunov.md), the input of Arnold's
+/// section 7, the paper notes' E7, derived in docs/lyapunov.md), the input of Arnold's
 /// theorem for the asymmetric body of energy index 2.
 ///
 /// The reduced system: the symplectic leaf Pi.gamma = L = C w0, |gamma| = 1 of the
@@ -70,11 +70,12 @@ double reduced_hamiltonian(const Body& body, double L, const Eigen::Vector4d& z)
 /// The body-frame angular momentum Pi (kg m^2/s) and vertical gamma of the chart point z.
 void chart_to_euler_poisson(double L, const Eigen::Vector4d& z, Eigen::Vector3d& Pi, Eigen::Vector3d& gamma);
 
-/// The normal form of `body` (conservative, validate()d; principal body) spinning at w0 (rad/s)
+/// The normal form of `body` (conservative: damping ignored; a principal body) spinning at w0 (rad/s)
 /// about its upright axis, or nullopt when it has none of the kind above: the linearisation is
 /// not stable with four distinct nonzero frequencies of opposite Krein signatures (index 2),
 /// e.g. at index 0 (H2 definite), at 1:1 or beyond a stability boundary.
-/// Throws InvalidInput (key "motion.spin") for a non-finite spin.
+/// Throws InvalidInput for a body validate() refuses, a general body (SPEC section 11), or a
+/// non-finite spin (key "motion.spin").
 std::optional<NormalForm> birkhoff_normal_form(const Body& body, double spin);
 
 /// "1:1", "1:2", "1:3" for resonance 1, 2, 3; "" for 0.
