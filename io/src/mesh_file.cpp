@@ -492,9 +492,17 @@ TriangleMesh read_mesh(const std::string& path, double scale, const std::string&
   }
   // Coordinates as float32, as Assimp (ai_real) read them: a mesh's geometry is its float32
   // vertices, and every format gives the same body for the same vertices.
+  // (A double beyond float's range is tested first: converting it is undefined, and GCC then
+  // took every converted vertex for finite.)
   bool finite = true;
   for (Eigen::Vector3d& v : mesh.vertices) {
-    v = scale * v.cast<float>().cast<double>();
+    for (int a = 0; a < 3; ++a) {
+      if (!(std::abs(v[a]) <= double(std::numeric_limits<float>::max()))) {
+        finite = false;
+        break;
+      }
+      v[a] = scale * double(static_cast<float>(v[a]));
+    }
     finite = finite && v.allFinite();
   }
   if (!finite) throw InvalidInput(key, fmt::format("'{}' has a vertex that is not a finite number", shown(path)));
