@@ -4,11 +4,13 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
 
+#include "heavytop/io/config.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/linear_models.hpp"
@@ -27,12 +29,38 @@ constexpr std::string_view kVerdictColumns[] = {"first-order", "body-fixed", "li
 constexpr const char* kFormatName = "heavytop stability map 1";
 constexpr std::size_t kRowsPerBlock = 1 << 20;  // of a map file, written or read at a time
 
+/// Throws InvalidInput unless `path` is a regular file (a device such as /dev/zero, a FIFO or
+/// a folder would be read forever, or not at all); returns its size.
+std::uintmax_t map_file_size(const std::string& path, const std::string& key) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InvalidInput(key, fmt::format("cannot read '{}': no such file", printable(path)));
+  if (!std::filesystem::is_regular_file(status))
+    throw InvalidInput(key, fmt::format("'{}' is not a regular file (a map is a file heavytop sweep wrote)", printable(path)));
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
+  return size;
+}
+
 std::string read_whole(const std::string& path, const std::string& key) {
+  const std::uintmax_t size = map_file_size(path, key);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  if (!in) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
+  // A CSV map's size is bounded by its header: at most kMaxSweepPoints rows of at most 32
+  // bytes a column (a double's shortest form is at most 24 characters, a certificate 18).
+  std::string header(4096, '\0');
+  in.read(header.data(), static_cast<std::streamsize>(header.size()));
+  header.resize(static_cast<std::size_t>(in.gcount()));
+  header = header.substr(0, header.find('\n'));
+  in.clear();
+  const std::size_t columns = 1 + static_cast<std::size_t>(std::count(header.begin(), header.end(), ','));
+  if (size > header.size() + 1 + kMaxSweepPoints * 32 * columns)
+    throw InvalidInput(key, fmt::format("'{}' is larger than a map of {} points can be", printable(path), kMaxSweepPoints));
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.seekg(0);
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return text;
 }
 
 /// The axes (keys and values, exact) of rows whose first columns are a row-major grid.
@@ -177,6 +205,71 @@ std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
   return out;
 }
 
+namespace {
+
+bool proves_stable(LyapunovCertificate c) {
+  return c == LyapunovCertificate::EnergyCasimir || c == LyapunovCertificate::Chetaev ||
+         c == LyapunovCertificate::CriticalQuartic;
+}
+
+}  // namespace
+
+std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
+                                  bool packed) {
+  const std::size_t total = grid_size(axes);
+  std::size_t n = 0;
+  if (packed) {
+    for (; n < total && (n + 1) * kPackedVerdictSize <= records.size(); ++n) {
+      const auto* r = reinterpret_cast<const unsigned char*>(records.data() + n * kPackedVerdictSize);
+      if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > static_cast<unsigned char>(LyapunovCertificate::None))
+        break;
+      if ((r[3] == 1) != proves_stable(static_cast<LyapunovCertificate>(r[4]))) break;
+      if (nonlinear ? r[5] > 1 : r[5] != 2) break;
+    }
+    return n;
+  }
+  const std::size_t cells = axes.size() + 5 + (nonlinear ? 1 : 0);
+  std::vector<std::string_view> cell;
+  for (std::size_t at = 0; n < total && at < records.size(); ++n) {
+    const std::size_t end = records.find('\n', at);
+    if (end == std::string_view::npos) break;  // torn
+    const std::string_view line = records.substr(at, end - at + 1);
+    at = end + 1;
+    cell.clear();
+    for (std::size_t from = 0;;) {
+      const std::size_t comma = line.find(',', from);
+      cell.push_back(line.substr(from, comma == std::string_view::npos ? line.size() - 1 - from : comma - from));
+      if (comma == std::string_view::npos) break;
+      from = comma + 1;
+    }
+    if (cell.size() != cells) break;
+    auto flag = [](std::string_view c) { return c == "0" ? 0 : c == "1" ? 1 : -1; };
+    SweepVerdict v;
+    bool ok = true;
+    const std::size_t c = axes.size();
+    for (std::size_t m = 0; m < 3; ++m) {
+      const int f = flag(cell[c + m]);
+      ok = ok && f >= 0;
+      v.linear[m] = f == 1;
+    }
+    const int lyapunov = flag(cell[c + 3]);
+    ok = ok && lyapunov >= 0;
+    v.lyapunov = lyapunov == 1;
+    const auto certificate = std::find_if(std::begin(kCertificates), std::end(kCertificates),
+                                          [&](LyapunovCertificate x) { return name(x) == cell[c + 4]; });
+    ok = ok && certificate != std::end(kCertificates) && proves_stable(*certificate) == v.lyapunov;
+    if (!ok) break;
+    v.lyapunov_certificate = *certificate;
+    if (nonlinear) {
+      const int f = flag(cell[c + 5]);
+      if (f < 0) break;
+      v.nonlinear = f == 1;
+    }
+    if (sweep_csv_rows(axes, n, {v}) != line) break;  // the varied values at their grid point, exactly
+  }
+  return n;
+}
+
 #ifndef HEAVYTOP_HAVE_HDF5
 bool hdf5_available() { return false; }
 
@@ -284,6 +377,7 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
 }
 
 StabilityMap read_map(const std::string& path, const std::string& key) {
+  map_file_size(path, key);
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
