@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -62,7 +65,29 @@ std::string flag_of(const std::string& field) {
   return it == flags.end() ? field : it->second;
 }
 
-Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(formats.front()) {
+CLI::Validator positive_count() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        long long n = 0;
+        const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+        if (ec != std::errc() || end != value.data() + value.size() || n < 1)
+          return "must be a whole number from 1 to " + std::to_string(std::numeric_limits<long long>::max());
+        return "";
+      },
+      "INT >= 1");
+}
+
+/// Throws InvalidInput naming the first option of `command` given an empty value (CLI11 makes
+/// `--length ""` a 0 and `--config ""` no file at all).
+static void refuse_empty_values(const CLI::App& command) {
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->get_type_size() == 0) continue;  // a flag
+    for (const std::string& value : option->results())
+      if (value.empty()) throw InvalidInput(option->get_name(), "must not be empty");
+  }
+}
+
+Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : command_(&command), format_(formats.front()) {
   command.add_option("--config", config_path_, "TOML configuration file (SPEC section 4); without it the built-in toy top")
       ->type_name("FILE");
   for (const KeyHelp& spec : kKeys) {
@@ -88,6 +113,7 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(fo
 }
 
 void Inputs::resolve(bool allow_general) {
+  refuse_empty_values(*command_);
   Body body = example_toy_top();
   InitialState state = example_motion();
   if (!config_path_.empty()) {
@@ -148,6 +174,17 @@ void Inputs::resolve(bool allow_general) {
   body.damping = damping;
   validate(body);
   validate(state);
+  if (!is_realizable(body))  // SPEC section 1: said once, and the command goes on
+    std::cerr << (body.general.is_zero()
+                      ? fmt::format("heavytop: warning: this body cannot exist as given: A + B - C = {:.6g} kg m^2 is "
+                                    "less than 2 m R^2 = {} kg m^2 (its central moments break the triangle "
+                                    "inequality); going on\n",
+                                    body.A + body.B - body.C,
+                                    std::isfinite(2.0 * body.mass * body.length * body.length)
+                                        ? fmt::format("{:.6g}", 2.0 * body.mass * body.length * body.length)
+                                        : std::string("beyond a double"))
+                      : std::string("heavytop: warning: this body cannot exist as given: its principal moments of "
+                                    "inertia about the centre of mass break the triangle inequality; going on\n"));
   body_ = body;
   state_ = state;
 }

@@ -49,6 +49,10 @@ std::size_t mpi_launch_size();
 /// the same), 2 (after saying why) if there is none and the job has more.
 int run_sweep_under_mpi(int argc, char** argv, bool replace_process);
 
+/// A CLI11 check for a count option such as --max-steps: a whole number >= 1 that fits a
+/// 64-bit signed integer (CLI11 alone wraps "-1" and 2^64 into an unsigned count).
+CLI::Validator positive_count();
+
 /// The body and motion as given on the command line and in --config, merged.
 class Inputs {
  public:
@@ -84,6 +88,7 @@ class Inputs {
     CLI::Option* option = nullptr;
     double value = 0.0;
   };
+  CLI::App* command_ = nullptr;                 // its options' values are checked in resolve()
   std::string config_path_;
   std::string format_;
   std::string output_;
