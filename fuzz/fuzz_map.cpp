@@ -39,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   const std::vector<heavytop::SweepAxis> axes = {{.key = "spin", .start = 0, .stop = 300, .count = 4},
-                                                 {.key = "B/A", .start = 0.5, .stop = 1.5, .count = 3}};
+                                                 {.key = "B/A", .start = 0.8, .stop = 1.2, .count = 3}};
   for (bool nonlinear : {false, true}) {
     const std::size_t packed = heavytop::io::valid_journal_records(bytes, axes, nonlinear, true);
     if (packed > 12 || packed * heavytop::io::kPackedVerdictSize > size) std::abort();
