@@ -77,6 +77,14 @@ CLI::Validator positive_count() {
       "INT >= 1");
 }
 
+/// The realizability warning of the body resolve() made (SPEC section 1), empty for a real
+/// body: printed by run_reporting_errors() when the command succeeds, so that bad input is
+/// still refused in one line.
+static std::string& realizability_warning() {
+  static std::string warning;
+  return warning;
+}
+
 /// Throws InvalidInput naming the first option of `command` given an empty value (CLI11 makes
 /// `--length ""` a 0 and `--config ""` no file at all).
 static void refuse_empty_values(const CLI::App& command) {
@@ -174,8 +182,8 @@ void Inputs::resolve(bool allow_general) {
   body.damping = damping;
   validate(body);
   validate(state);
-  if (!is_realizable(body))  // SPEC section 1: said once, and the command goes on
-    std::cerr << (body.general.is_zero()
+  if (!is_realizable(body))  // SPEC section 1: said once when the command has done its work
+    realizability_warning() = (body.general.is_zero()
                       ? fmt::format("heavytop: warning: this body cannot exist as given: A + B - C = {:.6g} kg m^2 is "
                                     "less than 2 m R^2 = {} kg m^2 (its central moments break the triangle "
                                     "inequality); going on\n",
@@ -226,7 +234,9 @@ ProgressBar::~ProgressBar() {
 
 int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
   try {
-    return body();
+    const int status = body();
+    std::cerr << realizability_warning();
+    return status;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
