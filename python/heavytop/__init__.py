@@ -38,13 +38,13 @@ from ._api import (body_from_parts, body_report, compare, derive, derive_check, 
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
-                      StabilityMap, Trajectory, Wander)
+                      StabilityMap, Trajectory, Wander, Answer)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
     "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
     "body_from_parts", "body_report", "precession", "rpm",
-    "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
+    "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
 ]
