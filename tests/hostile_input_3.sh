@@ -134,6 +134,10 @@ check "... not the spin" bash -c "! grep -q 'motion.spin\|--spin' err"
 
 # ---- 4. Maps and resumes: nothing silently wrong -----------------------------------------------
 check "report --map /dev/zero is refused at once, exit 2 (it read forever)" bash -c "timeout 10 '$H' report --map /dev/zero --output rep0 2> err; [ \$? -eq 2 ] && grep -q 'not a regular file' err"
+printf 'spin,B/A,first-order,body-fixed,linearized,lyapunov,lyapunov_certificate\n0,0.8,0,0,0,0,none\nJ\r\x00300,1,0,0,0,0,none\n' > cr.csv
+check "a map whose cell holds a carriage return (fuzz_map) is refused" run 2 report --map cr.csv --output crrep
+check "... in one line, the cell shown" python3 -c "
+e = open('err').read(); assert e.count(chr(10)) == 1 and r'J\r\x00300' in e, e"
 # interrupted NAME ARGS...: starts `heavytop sweep ARGS --output NAME`, stops it with SIGINT
 # once NAME.partial holds a record, and leaves NAME.partial and NAME.partial.args as a crash would.
 interrupted() {

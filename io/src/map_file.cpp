@@ -63,6 +63,12 @@ std::string read_whole(const std::string& path, const std::string& key) {
   return text;
 }
 
+/// A cell as it goes into a one-line message: control characters shown, at most 40 bytes
+/// (fuzz_map: a cell with a carriage return broke the message's line).
+std::string cell_shown(std::string_view cell) {
+  return printable(cell.size() > 40 ? std::string(cell.substr(0, 40)) + "..." : std::string(cell));
+}
+
 /// The axes (keys and values, exact) of rows whose first columns are a row-major grid.
 std::vector<MapAxis> grid_of_rows(const std::vector<std::string>& keys, const std::vector<std::vector<double>>& rows,
                                   const std::string& key) {
@@ -74,7 +80,8 @@ std::vector<MapAxis> grid_of_rows(const std::vector<std::string>& keys, const st
     MapAxis axis{.key = keys[k], .values = {}};
     std::size_t run = 1;
     while (run < inner && rows[run][k] == rows[0][k]) ++run;
-    if (run == 0 || inner % run != 0) throw InvalidInput(key, fmt::format("the rows are not a grid of '{}'", keys[k]));
+    if (run == 0 || inner % run != 0)
+      throw InvalidInput(key, fmt::format("the rows are not a grid of '{}'", cell_shown(keys[k])));
     for (std::size_t i = 0; i < inner; i += run) axis.values.push_back(rows[i][k]);
     points *= axis.values.size();
     inner = run;
@@ -85,7 +92,7 @@ std::vector<MapAxis> grid_of_rows(const std::vector<std::string>& keys, const st
     std::size_t index = r;
     for (std::size_t k = axes.size(); k-- > 0;) {
       if (rows[r][k] != axes[k].values[index % axes[k].values.size()])
-        throw InvalidInput(key, fmt::format("row {}: '{}' is not the grid's value there", r + 2, keys[k]));
+        throw InvalidInput(key, fmt::format("row {}: '{}' is not the grid's value there", r + 2, cell_shown(keys[k])));
       index /= axes[k].values.size();
     }
   }
@@ -130,7 +137,7 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
     for (std::size_t k = 0; k < keys.size(); ++k) {
       const auto [p, ec] = std::from_chars(cells[k].data(), cells[k].data() + cells[k].size(), point[k]);
       if (ec != std::errc() || p != cells[k].data() + cells[k].size())
-        throw InvalidInput(key, fmt::format("row {}: '{}' is not a number", row + 1, cells[k]));
+        throw InvalidInput(key, fmt::format("row {}: '{}' is not a number", row + 1, cell_shown(cells[k])));
     }
     auto flag = [&](std::size_t c) {
       if (cells[c] != "0" && cells[c] != "1")
@@ -144,7 +151,8 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
     const auto certificate = std::find_if(std::begin(kCertificates), std::end(kCertificates),
                                           [&](LyapunovCertificate x) { return name(x) == cells[c + 4]; });
     if (certificate == std::end(kCertificates))
-      throw InvalidInput(key, fmt::format("row {}: '{}' is not a certificate (SPEC section 7)", row + 1, cells[c + 4]));
+      throw InvalidInput(key, fmt::format("row {}: '{}' is not a certificate (SPEC section 7)", row + 1,
+                                          cell_shown(cells[c + 4])));
     v.lyapunov_certificate = *certificate;
     if (nonlinear) v.nonlinear = flag(c + 5);
   }
@@ -380,13 +388,13 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
   map_file_size(path, key);
   {
     std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
+    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
     char magic[4] = {};
     probe.read(magic, 4);
     if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
   }
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  const std::string bad = fmt::format("'{}' is not a heavytop map file", path);
+  const std::string bad = fmt::format("'{}' is not a heavytop map file", printable(path));
   const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (file < 0) throw InvalidInput(key, bad + " (HDF5 cannot open it)");
   auto read_attribute = [&](hid_t on, const char* name, hid_t type, void* value) {
