@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -420,6 +421,14 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     const Handle space(H5Dget_space(d), H5Sclose);
     if (H5Sget_simple_extent_ndims(space) != 1 || H5Sget_simple_extent_npoints(space) != hssize_t(expected))
       throw InvalidInput(key, fmt::format("{} (dataset '{}' must have {} elements)", bad, name, expected));
+    // Only the layout and the element size heavytop writes (chunked, 8-byte axes, 1-byte
+    // verdicts) reach H5Dread: a mutated compact layout made HDF5 read past its own buffer
+    // (fuzz_map, issue 30), which HDF5 does not check.
+    const Handle create(H5Dget_create_plist(d), H5Pclose);
+    const Handle type(H5Dget_type(d), H5Tclose);
+    if (create < 0 || H5Pget_layout(create) != H5D_CHUNKED || type < 0 ||
+        H5Tget_size(type) != sizeof(typename std::decay_t<decltype(out)>::value_type))
+      throw InvalidInput(key, fmt::format("{} (dataset '{}' is not laid out as heavytop writes it)", bad, name));
     out.resize(expected);
     if (H5Dread(d, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
       throw InvalidInput(key, fmt::format("{} (dataset '{}' cannot be read)", bad, name));
