@@ -43,6 +43,7 @@ namespace {
 Json stability_object(const Body& body, double spin, const std::vector<ModelStability>& models, Json answer) {
   Json out;
   out["body"] = body_json(body);
+  if (!is_realizable(body)) out["realizable"] = false;  // SPEC section 1, beside the body
   add_damping(out, body);
   out["spin"] = spin;
   out["answer"] = std::move(answer);  // SPEC 14: what a person asks first
@@ -374,6 +375,7 @@ std::string trajectory_json(Model model, const Body& body, const InitialState& s
   Json out;
   out["model"] = std::string(name(model));
   out["body"] = body_json(body);
+  if (!is_realizable(body)) out["realizable"] = false;  // SPEC section 1, beside the body
   out["motion"] = {{"spin", s.spin}, {"theta0", s.theta0}, {"phi0", s.phi0},
                    {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}};
   const auto names = tr.column_names();
