@@ -33,7 +33,9 @@ using Make = std::function<cli::Action(CLI::App&)>;
 // message that names the file shows it: the browser test runs the command line on a file of
 // this name in its current folder, so that the two messages are the same.
 constexpr const char* kConfig = "config.toml";
-constexpr const char* kOutput = "heavytop-output";
+// --output: a file under /dev/, which io::OutputStream writes directly (as it does a device or
+// a pipe) rather than through a temporary, a lock and a rename beside it.
+constexpr const char* kOutput = "/dev/heavytop-output";
 
 struct Result {
   int status = 0;       // the command line's exit status
@@ -54,7 +56,7 @@ Result run(const char* command, Make make, const std::string& config, std::vecto
     std::ofstream out(kConfig, std::ios::binary | std::ios::trunc);
     out << config;
   }
-  std::remove(kOutput);
+  std::ofstream(kOutput, std::ios::binary | std::ios::trunc).close();
   std::vector<std::string> words = {"heavytop", command, "--config", kConfig};
   words.insert(words.end(), args.begin(), args.end());
   words.insert(words.end(), {"--output", kOutput});
@@ -76,7 +78,6 @@ Result run(const char* command, Make make, const std::string& config, std::vecto
   r.message = err.str();
   while (!r.message.empty() && r.message.back() == '\n') r.message.pop_back();
   if (r.status == 0) r.output = slurp(kOutput);
-  std::remove(kOutput);
   return r;
 }
 
