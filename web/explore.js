@@ -112,6 +112,7 @@
     if ($("spin-unit").value === "rpm") c.motion.spin_rpm = spin; else c.motion.spin = spin;
     c.motion.theta0 = num("theta0");
     c.motion.phi0 = num("phi0");
+    for (const k of ["theta_rate0", "phi_rate0"]) if (initial.motion[k]) c.motion[k] = initial.motion[k];  // from `heavytop explore`
     for (const k of dampingKeys) if (num(k)) c.damping[k] = num(k);
     if (!Object.keys(c.damping).length) delete c.damping;
     return c;
@@ -300,8 +301,14 @@
 
   function setupMap(key, which) {
     const [a, b] = defaultRange(key);
-    $(`map-${which}0`).value = Number(a.toPrecision(4));
-    $(`map-${which}1`).value = Number(b.toPrecision(4));
+    // Four digits, rounded inwards (a ratio's range ends at what a real body allows).
+    const round = (v, up) => {
+      if (v === 0) return 0;
+      const q = Math.pow(10, Math.floor(Math.log10(Math.abs(v))) - 3);
+      return Number(((up ? Math.ceil(v / q) : Math.floor(v / q)) * q).toPrecision(4));
+    };
+    $(`map-${which}0`).value = round(a, a < b);
+    $(`map-${which}1`).value = round(b, !(a < b));
   }
 
   function start() {
