@@ -344,6 +344,8 @@
   function time(f, n) { const ts = []; for (let i = 0; i < n; i++) { const t = performance.now(); f(i); ts.push(performance.now() - t); } return median(ts); }
   function benchmark() {
     const c = JSON.parse(JSON.stringify(initial));
+    $("spin-unit").value = "rad/s";
+    fillInputs(initial);
     return {
       first_verdict_ms: firstVerdictAt,  // since the navigation started (performance.now's origin)
       core_ready_ms: coreReadyAt,
