@@ -23,6 +23,10 @@ packages=(
 # npm: Debian's package, unless a node install (e.g. NodeSource's nodejs) already brings its own.
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 
+# `install-deps.sh --web`: the explorer page (web/, `heavytop explore`): Emscripten's em++, node,
+# and chromium for its browser test (scripts/build.sh --web; the test command takes it too).
+[ "${1:-}" = "--web" ] && packages+=(emscripten nodejs chromium)
+
 # bench/peers/ (run by hand, not in CI): `install-deps.sh --peers` adds the other libraries.
 [ "${1:-}" = "--peers" ] && packages+=(libgsl-dev python3-scipy libmujoco-dev)
 
