@@ -50,10 +50,11 @@
 
   // ---- window.heavytop ------------------------------------------------------------------------
   let core = null;
+  const utf8 = new TextDecoder();
   function check(r) {
     if (r.status !== 0) throw new Error(r.message);
     if (r.message) console.warn(r.message);  // the command line's warnings on stderr
-    return r.output;
+    return utf8.decode(r.output);  // a view of the core's memory, valid until its next call
   }
   function stability(config) { return JSON.parse(check(core.stability(toml(config)))); }
   function lifetime(config) { return JSON.parse(check(core.lifetime(toml(config)))); }

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -57,11 +58,17 @@ struct Result {
   std::string message;  // what it wrote on stderr: the one-line error, or warnings
 };
 
+// The whole file in one read (a stream's rdbuf() copies it a character at a time).
 std::string slurp(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  std::string text;
+  if (std::FILE* f = std::fopen(path, "rb")) {
+    std::fseek(f, 0, SEEK_END);
+    text.resize(static_cast<std::size_t>(std::max(0L, std::ftell(f))));
+    std::fseek(f, 0, SEEK_SET);
+    text.resize(std::fread(text.data(), 1, text.size(), f));
+    std::fclose(f);
+  }
+  return text;
 }
 
 // `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it.
@@ -123,10 +130,14 @@ Result map_verdicts(std::vector<unsigned char>& bytes, const std::string& config
 #if defined(__EMSCRIPTEN__)
 std::string version() { return std::string("heavytop ") + std::string(kVersion); }
 
+// The output as a view of its bytes (UTF-8), alive until the next call: the page decodes it
+// with TextDecoder, far faster than embind's conversion of a long std::string.
 emscripten::val to_js(const Result& r) {
+  static std::string output;
+  output = r.output;
   emscripten::val o = emscripten::val::object();
   o.set("status", r.status);
-  o.set("output", r.output);
+  o.set("output", emscripten::val(emscripten::typed_memory_view(output.size(), output.data())));
   o.set("message", r.message);
   return o;
 }
@@ -157,6 +168,9 @@ emscripten::val js_stability_map(const std::string& config, const std::string& k
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(heavytop) {
+  // stderr is not a terminal here: the commands' progress bars (cli/common.hpp) stay off and do
+  // not read the clock at every step. Their messages reach std::cerr, which run() captures.
+  if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
   emscripten::register_vector<std::string>("StringList");
   emscripten::function("stability", &stability);
   emscripten::function("lifetime", &lifetime);
