@@ -148,12 +148,16 @@ function compareTrajectory(page, native, tol) {
 
   // ---- stability and simulate against the command line ----
   const list = bodies(24);
-  let worstKinds = { hanging: 0, damped: 0, asymmetric: 0, rpm: 0 };
+  // A body from its parts (SPEC section 10): [[body.part]] from an array of objects.
+  list.push({ body: { part: [{ shape: "cone", radius: 0.02, height: 0.02, density: 700 },
+                             { shape: "cylinder", radius: 0.003, height: 0.05, z0: 0.0, density: 7800 }] },
+              motion: { spin: 300, theta0: 0.05 } });
+  let worstKinds = { hanging: 0, damped: 0, asymmetric: 0, rpm: 0, parts: 0 };
   for (const [i, cfg] of list.entries()) {
     const toml = await page.evaluate((c) => heavytopExplorer.toml(c), cfg);
     const got = await page.evaluate((c) => { try { return heavytop.stability(c); } catch (e) { return { error: e.message }; } }, cfg);
     const native = cli(toml, ["stability", "--format", "json"]);
-    const kind = [cfg.body.length < 0 && "hanging", cfg.damping && "damped", cfg.body.A !== cfg.body.B && "asymmetric",
+    const kind = [cfg.body.part && "parts", cfg.body.length < 0 && "hanging", cfg.damping && "damped", cfg.body.A !== cfg.body.B && "asymmetric",
                   cfg.motion.spin_rpm !== undefined && "rpm"].filter(Boolean);
     kind.forEach((k) => worstKinds[k]++);
     if (native.status !== 0) {
@@ -173,7 +177,7 @@ function compareTrajectory(page, native, tol) {
       }
     }
   }
-  check("the bodies include hanging, damped, asymmetric ones and spins in rpm",
+  check("the bodies include hanging, damped, asymmetric ones, spins in rpm and parts",
         Object.values(worstKinds).every((n) => n > 0), JSON.stringify(worstKinds));
 
   // ---- bad input: the command line's one-line message ----
@@ -187,6 +191,8 @@ function compareTrajectory(page, native, tol) {
     [{ ...toy, damping: { axial: -1 } }, null],
     [{ ...toy, shape: { x: 1 } }, null],
     [{ ...toy, body: { ...toy.body, B: 1 } }, null],
+    [{ ...toy, body: { part: [{ shape: "mesh", file: "top.stl", density: 700 }] } }, null],
+    [{ ...toy, body: { part: [{ shape: "cone", radius: 0.02, height: 0.02 }] } }, null],
     [toy, { model: "nonlinear", t_end: -1, samples: 11 }],
     [toy, { model: "nope", t_end: 1, samples: 11 }],
     [toy, { model: "nonlinear", t_end: 1, samples: 1 }],
