@@ -14,6 +14,9 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/body.hpp"
+#include "heavytop/version.hpp"
+#include "heavytop/answer.hpp"
+#include "heavytop/io/formats.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/report/report.hpp"
 
@@ -24,10 +27,12 @@ int run(int argc, char** argv) {
   // derive lives in its own program, heavytop-derive, so that no other command pays for
   // loading the computer algebra (GiNaC, CLN, GMP) at start-up; listed below for --help.
   if (first == "derive") return run_derive(argc, argv, false);
-  CLI::App app{"heavytop: the heavy top (a rigid body about a fixed point in gravity), its "
-               "approximate models, their stability and motion.\nUnits SI; conventions in SPEC.md. With no command, "
-               "writes the built-in example's report to ./heavytop-report."};
+  CLI::App app{"heavytop: does a spinning top stay up, and for how long? The heavy top (a rigid body about a "
+               "fixed point in gravity), its approximate models, their stability and motion.\nUnits SI (rad/s, "
+               "or rpm with --spin-rpm); the contract is docs/contract.md. With no command, writes the built-in "
+               "example's report to ./heavytop-report and says where."};
   app.require_subcommand(0, 1);
+  app.set_version_flag("--version", fmt::format("heavytop {}", kVersion), "print `heavytop VERSION` and exit");
   // When argv[1] names a command, only that command's options are built: building all five
   // commands' (CLI11 checks each new option's names against the command's others) was 60% of
   // the instructions of `heavytop stability` (callgrind). Anything else (no command, --help, a
@@ -68,8 +73,10 @@ int run(int argc, char** argv) {
       }
     // No command: the report for the built-in example, a toy top.
     const std::string dir = "heavytop-report";
-    std::cout << "heavytop: the built-in example, a wooden toy top (60 g, 40 mm disc, centre of mass 25 mm "
-                 "above the tip) spun at 200 rad/s, started 0.05 rad off vertical.\n";
+    // The answer first, then what it is about and where the report went.
+    std::cout << io::answer_text(analyse_top(example_toy_top(), example_motion()).answer) << "\n";
+    std::cout << "heavytop: that is the built-in example, a wooden toy top (60 g, 40 mm disc, centre of mass "
+                 "25 mm above the tip) spun at 200 rad/s, started 0.05 rad off vertical.\n";
     report::write_report(dir, example_toy_top(), example_motion(), std::nullopt);
     std::cout << "heavytop: wrote " << dir << "/report.html (open it in a browser); "
               << "`heavytop --help` lists the commands.\n";

@@ -10,7 +10,8 @@ namespace heavytop::cli {
 Action add_body_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("body", "The body its [[body.part]] list (or its moments) makes: A, B, C, mass, "
                                          "length, products of inertia and offset about O");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"},
+                                         InputUses{.motion = false, .damping = false});
   return [inputs] {
     inputs->resolve(/*allow_general=*/true);
     const double g = inputs->body().gravity;

@@ -62,35 +62,84 @@ std::string flag_of(const std::string& field) {
   return it == flags.end() ? field : it->second;
 }
 
-Inputs::Inputs(CLI::App& command, std::vector<std::string> formats) : format_(formats.front()) {
-  command.add_option("--config", config_path_, "TOML configuration file (SPEC section 4); without it the built-in toy top")
+Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses uses)
+    : command_name_(command.get_name()), uses_(uses), format_(formats.front()) {
+  command.add_option("--config", config_path_,
+                     "TOML configuration file (docs/contract.md, section 4); without it the built-in toy top, "
+                     "whose keys the options below override one by one")
       ->type_name("FILE");
+  const auto used = [&](std::string_view group) {
+    return group == "Motion" ? uses_.motion : group == "Damping" ? uses_.damping : true;
+  };
+  // Defaults as the help shows them: the toy top's without --config; the motion's are 0 once
+  // the body is described (resolve()).
+  Body example = example_toy_top();
+  InitialState motion = example_motion();
   for (const KeyHelp& spec : kKeys) {
     Override& o = overrides_[spec.key];
+    const double example_value = *io::config_field(example, motion, spec.key);
+    const std::string group = group_of(spec.key);
     o.option = command.add_option(spec.option, o.value, spec.help)
                    ->type_name("NUM")
-                   ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    o.option->group(group_of(spec.key));
+                   ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                   ->default_str(group == "Body" ? fmt::format("{:g} (toy top)", example_value)
+                                 : group == "Motion" ? fmt::format("0; toy top alone: {:g}", example_value)
+                                                     : std::string("0"));
+    o.option->group(used(group) ? group : "");  // "": hidden, refused by resolve()
   }
   driven_ = command.add_option("--driven", driven_value_,
                                "true: a motor holds the spin w.k at its value at t = 0 (a gyroscope)")
                 ->type_name("BOOL")
                 ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
-                ->group("Damping");
+                ->default_str("false")
+                ->group(used("Damping") ? "Damping" : "");
   spin_rpm_.option = command.add_option("--spin-rpm,--spin_rpm", spin_rpm_.value, "rpm, spin w0 (instead of --spin)")
                          ->type_name("NUM")
                          ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
-                         ->group("Motion");
+                         ->default_str(fmt::format("0; toy top alone: {:.6g}", rpm_from_rad_per_s(motion.spin)))
+                         ->group(used("Motion") ? "Motion" : "");
   command.add_option("--format", format_, "output format")
       ->check(CLI::IsMember(formats))
       ->default_str(formats.front());
   command.add_option("--output", output_, "write to FILE instead of stdout")->type_name("FILE");
 }
 
+namespace {
+
+/// The body keys a person gives to describe a body (gravity alone changes the planet, not the top).
+constexpr const char* kDescribingKeys[] = {"body.A", "body.B", "body.C", "body.mass", "body.length"};
+
+}  // namespace
+
 void Inputs::resolve(bool allow_general) {
+  // An option of a section this command does not use is refused, never ignored.
+  const auto refuse_unused = [&](const CLI::Option* option, const char* section) {
+    if (option->count())
+      throw InvalidInput("--" + option->get_single_name(),
+                         fmt::format("`heavytop {}` does not use the {} (it takes the body only)",
+                                                         command_name_, section));
+  };
+  for (const KeyHelp& spec : kKeys) {
+    const std::string_view group = group_of(spec.key);
+    if ((group == "Motion" && !uses_.motion) || (group == "Damping" && !uses_.damping))
+      refuse_unused(overrides_.at(spec.key).option, group == "Motion" ? "motion" : "damping");
+  }
+  if (!uses_.motion) refuse_unused(spin_rpm_.option, "motion");
+  if (!uses_.damping) refuse_unused(driven_, "damping");
   Body body = example_toy_top();
-  InitialState state = example_motion();
+  // One rule for the motion, the same in Python: its keys default to 0 (SPEC section 4) as soon
+  // as the body is described (a --config, or any of --A --B --C --mass --length); only the
+  // built-in example as a whole brings its own motion.
+  bool described = !config_path_.empty();
+  std::vector<std::string> from_example;  // body keys taken from the built-in toy top
+  for (const char* key : kDescribingKeys) {
+    if (overrides_.at(key).option->count()) described = true;
+    else from_example.push_back(key);
+  }
+  InitialState state = described ? InitialState{} : example_motion();
+  if (config_path_.empty() && from_example.size() == std::size(kDescribingKeys)) from_example.clear();
   if (!config_path_.empty()) {
+    from_example.clear();
     config_ = io::read_configuration(config_path_, "--config");
     body = config_.body;
     state = config_.motion;
@@ -130,7 +179,16 @@ void Inputs::resolve(bool allow_general) {
       body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
     }
   } else {
-    validate(body);
+    try {
+      validate(body);
+    } catch (const InvalidInput& e) {  // a partial body on the command line: say what it was combined with
+      if (from_example.empty()) throw;
+      std::string keys;
+      for (const std::string& key : from_example)
+        keys += fmt::format("{}{} = {:g}", keys.empty() ? "" : ", ", key.substr(5), *io::config_field(body, state, key));
+      throw InvalidInput(e.key(), fmt::format("{} ({} came from the built-in toy top: give them too, or use --config)",
+                                              e.rule(), keys));
+    }
     assembly_ = io::assemble_moments(body, config_.general);
     for (const auto& [key, value] : config_.general)
       if (value != 0.0 && !allow_general)
@@ -193,6 +251,8 @@ int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {  // `heavytop --version`: "heavytop VERSION" on stdout, exit 0
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << fmt::format("heavytop: error: {}\n", e.what());

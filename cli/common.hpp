@@ -49,11 +49,20 @@ std::size_t mpi_launch_size();
 /// the same), 2 (after saying why) if there is none and the job has more.
 int run_sweep_under_mpi(int argc, char** argv, bool replace_process);
 
+/// Which of the configuration's sections a command uses: the body always; the motion (--spin,
+/// --theta0, ...) and the damping (--transverse-damping, ..., --driven) unless cleared. An
+/// option of a section the command does not use is refused by Inputs::resolve() (exit 2,
+/// naming it), never silently ignored, and is not listed in --help.
+struct InputUses {
+  bool motion = true;
+  bool damping = true;
+};
+
 /// The body and motion as given on the command line and in --config, merged.
 class Inputs {
  public:
   /// Adds --config, one option per SPEC key, --format (choices, first is default), --output.
-  Inputs(CLI::App& command, std::vector<std::string> formats);
+  Inputs(CLI::App& command, std::vector<std::string> formats, InputUses uses = InputUses{});
 
   /// Loads --config (if any), applies the options over it and validates. Throws InvalidInput.
   /// Without --config the base is the built-in example (a toy top), so options alone work.
@@ -73,6 +82,8 @@ class Inputs {
   const InitialState& state() const { return state_; }
   const std::string& format() const { return format_; }
   const std::string& output() const { return output_; }
+  /// --config as given ("" without one: the built-in example is the base).
+  const std::string& config_path() const { return config_path_; }
   /// The configuration file's further sections (empty without --config).
   const io::Configuration& configuration() const { return config_; }
   /// The body as mass properties: its parts (or its moments) summed, with the general body's
@@ -85,6 +96,8 @@ class Inputs {
     double value = 0.0;
   };
   std::string config_path_;
+  std::string command_name_;
+  InputUses uses_;
   std::string format_;
   std::string output_;
   std::map<std::string, Override> overrides_;  // "body.A", "motion.spin", ...

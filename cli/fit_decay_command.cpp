@@ -17,7 +17,8 @@ Action add_fit_decay_command(CLI::App& app) {
       "fit-decay", "Fit the axial damping and the dry friction ([damping] axial, friction) to a measured spin "
                    "decay (CSV: t and spin or spin_rpm), through the law C w' = -d_a w - tau0 sign(w) with C from "
                    "the body");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"},
+                                         InputUses{.motion = false, .damping = false});
   auto data = std::make_shared<std::string>();
   auto spin0 = std::make_shared<double>(0.0);
   cmd->add_option("--data", *data, "CSV file: a header naming t (s) and spin (rad/s) or spin_rpm (rpm), one point a "

@@ -52,7 +52,8 @@ Action add_report_command(CLI::App& app) {
       throw InvalidInput("--slice", "needs --map FILE");
     }
     report::write_report(inputs->output(), inputs->body(), inputs->state(),
-                         t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt, map);
+                         t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt, map,
+                         inputs->config_path());
     std::cout << "heavytop: wrote " << (std::filesystem::path(inputs->output()) / "report.html").string() << "\n";
   };
 }

@@ -110,6 +110,12 @@ Action add_simulate_command(CLI::App& app) {
     for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option, o->max_steps_option})
       if (given->count() && !nonlinear)
         throw InvalidInput(given->get_name(), "applies to --model nonlinear only");
+    // The tolerances: the nonlinear integrators', and the linear models' numeric route (the
+    // matrix exponential takes none; the closed forms and lagrange-exact are exact).
+    for (CLI::Option* given : {o->rtol_option, o->atol_option})
+      if (given->count() && !nonlinear)
+        throw InvalidInput(given->get_name(), "applies to --model nonlinear only (the other models are closed "
+                                              "forms or a matrix exponential, exact to rounding)");
     if (*integrator != Integrator::Splitting && (o->step_option->count() || o->order_option->count()))
       throw InvalidInput(o->step_option->count() ? "--step" : "--order", "applies to --integrator splitting only");
     o->options.method = o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;

@@ -1,11 +1,14 @@
 // heavytop stability: each linear model's verdict at the spin, its stable spins, its eigenvalues;
-// then the real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders.
+// then the real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders; first of
+// all, the answer (SPEC section 14).
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/io/formats.hpp"
+#include "heavytop/answer.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
 
@@ -16,21 +19,30 @@ Action add_stability_command(CLI::App& app) {
       "stability", "Linear stability of the first-order, body-fixed and linearized models at a spin, "
                    "and the real body's Lyapunov verdict");
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
-  auto horizon = std::make_shared<double>(100.0);
-  cmd->add_option("--horizon", *horizon,
-                  "s, for A != B: the wander (largest tilt) is that of a nonlinear run this long")
+  auto options = std::make_shared<AnswerOptions>();
+  auto lifetime_horizon = std::make_shared<std::optional<double>>();
+  cmd->add_option("--horizon", options->horizon,
+                  "s, how long the nonlinear body is followed when the Lyapunov verdict does not prove it "
+                  "stable (the answer's fall, the wander for A != B); a damped body is followed over the "
+                  "lifetime's horizon (--lifetime-horizon)")
       ->default_str("100");
-  return [inputs, horizon] {
+  cmd->add_option("--lifetime-horizon", *lifetime_horizon,
+                  "s, a damped body's run (default: lifetime's, 10 times the time to the critical spin)");
+  cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt from the upward vertical past which the top "
+                                                   "has fallen")
+      ->default_str("1");
+  return [inputs, options, lifetime_horizon] {
     inputs->resolve();
-    if (!(std::isfinite(*horizon) && *horizon > 0.0)) throw InvalidInput("--horizon", "must be a finite number > 0");
+    if (!(std::isfinite(options->horizon) && options->horizon > 0.0))
+      throw InvalidInput("--horizon", "must be a finite number > 0");
+    if (!(options->max_tilt > 0.0 && options->max_tilt <= M_PI)) throw InvalidInput("--max-tilt", "must be in (0, pi]");
+    if (*lifetime_horizon && !(std::isfinite(**lifetime_horizon) && **lifetime_horizon > 0.0))
+      throw InvalidInput("--lifetime-horizon", "must be a finite number > 0");
+    options->damped_horizon = *lifetime_horizon;
     const Body& body = inputs->body();
-    const double spin = inputs->state().spin;
-    const auto models = analyse_stability(body, spin);
-    const auto lyapunov = analyse_lyapunov(body, spin);
-    const auto wander = axis_wander(body, inputs->state(), *horizon);
-    write_output(inputs->output(), inputs->format() == "json"
-                                       ? io::stability_json(body, spin, models, lyapunov, wander)
-                                       : io::stability_text(body, spin, models, lyapunov, wander));
+    const TopAnalysis analysis = analyse_top(body, inputs->state(), *options);
+    write_output(inputs->output(), inputs->format() == "json" ? io::stability_json(body, analysis)
+                                                              : io::stability_text(body, analysis));
   };
 }
 

@@ -6,6 +6,7 @@
 // FILE.partial becomes FILE (renamed for CSV; for HDF5 the columnar file is written from it
 // through a temporary name). Nothing is lost or written twice. Under MPI (heavytop-mpi) the
 // ranks compute the blocks and the first rank alone does all of this.
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -32,6 +33,32 @@ struct SweepSettings {
 };
 
 /// Everything the rows depend on, in one line: a resumed sweep must have the same.
+/// How many points each verdict column called stable, for the line the sweep ends with.
+struct VerdictCounts {
+  std::size_t points = 0;
+  std::array<std::size_t, kLinearModels.size()> linear{};
+  std::size_t lyapunov = 0, nonlinear = 0;
+
+  void add(const std::vector<SweepVerdict>& verdicts) {
+    for (const SweepVerdict& v : verdicts) {
+      ++points;
+      for (std::size_t m = 0; m < linear.size(); ++m) linear[m] += v.linear[m] ? 1 : 0;
+      lyapunov += v.lyapunov ? 1 : 0;
+      nonlinear += v.nonlinear.value_or(false) ? 1 : 0;
+    }
+  }
+  /// "1600 points (stable: first-order 830, body-fixed 512, linearized 790, lyapunov 700)".
+  std::string words(std::size_t total, std::size_t resumed, bool with_nonlinear) const {
+    std::string stable;
+    for (std::size_t m = 0; m < linear.size(); ++m)
+      stable += fmt::format("{}{} {}", m ? ", " : "", name(kLinearModels[m]), linear[m]);
+    stable += fmt::format(", lyapunov {}", lyapunov);
+    if (with_nonlinear) stable += fmt::format(", nonlinear {}", nonlinear);
+    return fmt::format("{} points (stable{}: {}){}", total, resumed ? " among the computed ones" : "", stable,
+                       resumed ? fmt::format("; {} rows resumed from the partial file", resumed) : "");
+  }
+};
+
 std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o) {
   const Body& b = in.body();
   const InitialState& s = in.state();
@@ -90,19 +117,28 @@ Action add_sweep_command(CLI::App& app) {
       ->take_all();
   cmd->add_option("--model", s->model, "nonlinear: add the column `nonlinear`, the verdict of a simulation")
       ->check(CLI::IsMember({"nonlinear"}));
-  cmd->add_option("--horizon", s->options.horizon, "s, simulated time of each nonlinear run")->default_str("100");
-  cmd->add_option("--max-tilt", s->options.max_tilt, "rad, a nonlinear run is stable if its tilt stays below")->default_str("0.5");
-  cmd->add_option("--integrator", s->integrator,
-                  "nonlinear: auto (batched Taylor series, the default), taylor (the same), dopri5 or dop853 (one point at a time)")
-      ->check(CLI::IsMember({"auto", "taylor", "dopri5", "dop853"}))
-      ->default_str("auto");
-  cmd->add_option("--rtol", s->options.integrator.rtol, "nonlinear: relative tolerance per step");
-  cmd->add_option("--atol", s->options.integrator.atol, "nonlinear: absolute tolerance per step");
-  cmd->add_option("--max-steps", s->options.integrator.max_steps,
-                  "nonlinear: the most integration steps one point's run may take")
-      ->default_str(fmt::format("{}", s->options.integrator.max_steps));
-  return [inputs, s] {
+  // The nonlinear verdict's settings: refused without --model nonlinear, never silently ignored.
+  const std::vector<const CLI::Option*> nonlinear_only = {
+      cmd->add_option("--horizon", s->options.horizon, "s, nonlinear: simulated time of each run")->default_str("100"),
+      cmd->add_option("--max-tilt", s->options.max_tilt, "rad, nonlinear: a run is stable if its tilt stays below")
+          ->default_str("0.5"),
+      cmd->add_option("--integrator", s->integrator,
+                      "nonlinear: auto (batched Taylor series, the default), taylor (the same), dopri5 or dop853 "
+                      "(one point at a time)")
+          ->check(CLI::IsMember({"auto", "taylor", "dopri5", "dop853"}))
+          ->default_str("auto"),
+      cmd->add_option("--rtol", s->options.integrator.rtol, "nonlinear: relative tolerance per step")
+          ->default_str(fmt::format("{:g}", s->options.integrator.rtol)),
+      cmd->add_option("--atol", s->options.integrator.atol, "nonlinear: absolute tolerance per step")
+          ->default_str(fmt::format("{:g}", s->options.integrator.atol)),
+      cmd->add_option("--max-steps", s->options.integrator.max_steps,
+                      "nonlinear: the most integration steps one point's run may take")
+          ->default_str(fmt::format("{}", s->options.integrator.max_steps))};
+  return [inputs, s, nonlinear_only] {
     inputs->resolve();
+    if (s->model != "nonlinear")
+      for (const CLI::Option* o : nonlinear_only)
+        if (o->count()) throw InvalidInput(o->get_name(), "sets the nonlinear verdict: add --model nonlinear");
     std::vector<SweepAxis> axes;
     for (const auto& v : s->vary) axes.push_back(parse_sweep_axis(v));
     s->options.nonlinear = s->model == "nonlinear";
@@ -130,15 +166,22 @@ Action add_sweep_command(CLI::App& app) {
     const std::string path = io::resolved(inputs->output());
     const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);
     ProgressBar progress("sweep", static_cast<double>(total));
+    VerdictCounts counts;
+    const auto say_what_was_written = [&](const std::string& where, std::size_t resumed) {
+      std::cerr << "heavytop: sweep wrote " << counts.words(total, resumed, s->options.nonlinear) << " to " << where
+                << "\n";
+    };
     if (!io::is_regular_target(path)) {  // stdout, a device or a pipe: written directly
       if (hdf5) throw InvalidInput("--output", "the hdf5 format needs a regular file (HDF5 seeks): give --output FILE.h5");
       io::OutputStream out(path, "--output");
       out.write(head);
       distribution.run(0, total, block, compute, [&](std::size_t begin, std::vector<SweepVerdict> v) {
         out.write(io::sweep_csv_rows(axes, begin, v));
+        counts.add(v);
         progress.update(static_cast<double>(begin + v.size()));
       });
       out.commit();
+      say_what_was_written(inputs->output().empty() || inputs->output() == "-" ? "stdout" : inputs->output(), 0);
       return;
     }
 
@@ -168,6 +211,7 @@ Action add_sweep_command(CLI::App& app) {
       const std::string bytes = journal.encode(axes, begin, v);
       if (std::fwrite(bytes.data(), 1, bytes.size(), out) != bytes.size() || std::fflush(out) != 0)
         throw Failure(fmt::format("--output: cannot write '{}'", partial));
+      counts.add(v);
       progress.update(static_cast<double>(begin + v.size()));
     });
     if (std::fclose(out) != 0) throw Failure(fmt::format("--output: cannot write '{}'", partial));
@@ -190,6 +234,7 @@ Action add_sweep_command(CLI::App& app) {
     }
     std::error_code ignored;
     fs::remove(args_file, ignored);
+    say_what_was_written(inputs->output(), done);
   };
 }
 

@@ -3,29 +3,37 @@
 # Does nothing (and needs no network) when they are all present already.
 set -euo pipefail
 
+# What the main job needs: the core, io, the report (gnuplot draws its figures; node bundles
+# its page script) and the command line.
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libboost-dev          # linear algebra; Boost.Odeint and Boost.Math (header-only)
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  libginac-dev libcln-dev             # computer algebra for the symbolic target
-  texlive-latex-base                  # pdflatex: the test that derive's LaTeX compiles
-  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
-  python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
   gnuplot-nox fonts-dejavu-core       # figures (PNG and SVG)
   libassimp-dev                       # CAD meshes (STL, OBJ, PLY) for [[body.part]] shape = "mesh"
-  libopenmpi-dev openmpi-bin          # heavytop-mpi: sweeps across the ranks of an MPI job (mpirun)
   libhdf5-dev                         # big maps as HDF5 (sweep --format hdf5)
-  strace                              # tests/startup.sh: what a command opens before its work
-  clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
-  nodejs chromium                     # the report's page script (npm packages, bundled at build time) and its browser test
+  nodejs                              # the report's page script (npm packages, bundled at build time)
 )
+# `install-deps.sh --tests`: the rest, for the test command (scripts/build.sh --tests).
+if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--peers" ]; then
+  packages+=(
+    libgtest-dev libgmock-dev libbenchmark-dev
+    libginac-dev libcln-dev             # computer algebra for the symbolic target
+    texlive-latex-base                  # pdflatex: the test that derive's LaTeX compiles
+    python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+    python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
+    libopenmpi-dev openmpi-bin          # heavytop-mpi: sweeps across the ranks of an MPI job (mpirun)
+    strace                              # tests/startup.sh: what a command opens before its work
+    clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
+    chromium                            # the report's and the page's browser tests
+  )
+fi
 # npm: Debian's package, unless a node install (e.g. NodeSource's nodejs) already brings its own.
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 # `install-deps.sh --web`: the explorer page (web/, `heavytop explore`): Emscripten's em++, node,
-# and chromium for its browser test (scripts/build.sh --web; the test command takes it too).
-[ "${1:-}" = "--web" ] && packages+=(emscripten nodejs chromium)
+# and chromium for its browser test (scripts/build.sh --web); --tests takes them too.
+case "${1:-}" in --web | --tests) packages+=(emscripten nodejs chromium) ;; esac
 
 # bench/peers/ (run by hand, not in CI): `install-deps.sh --peers` adds the other libraries.
 [ "${1:-}" = "--peers" ] && packages+=(libgsl-dev python3-scipy libmujoco-dev)

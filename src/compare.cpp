@@ -12,8 +12,6 @@
 namespace heavytop {
 namespace {
 
-double azimuth(double theta, double phi) { return std::atan2(-std::sin(phi), std::sin(theta) * std::cos(phi)); }
-
 ModelComparison against(const std::string& model, Trajectory tr, const Trajectory& truth,
                         const MotionFrequencies& truth_frequencies) {
   ModelComparison c;
@@ -62,10 +60,10 @@ MotionFrequencies measure_frequencies(const Trajectory& tr) {
   if (n < 3) return f;
   std::vector<double> tau(n), az(n);
   double lo = INFINITY, hi = -INFINITY;
+  ContinuousAzimuth azimuth;
   for (std::size_t i = 0; i < n; ++i) {
     tau[i] = tilt(tr.theta[i], tr.phi[i]);
     az[i] = azimuth(tr.theta[i], tr.phi[i]);
-    if (i > 0) az[i] = az[i - 1] + std::remainder(az[i] - az[i - 1], 2.0 * std::numbers::pi);  // unwrap
     lo = std::min(lo, tau[i]);
     hi = std::max(hi, tau[i]);
   }

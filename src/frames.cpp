@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -42,7 +46,35 @@ RigidBodyState initial_rigid_body_state(const InitialState& s) {
 }
 
 double tilt(double theta, double phi) {
-  return std::acos(std::clamp(std::cos(theta) * std::cos(phi), -1.0, 1.0));
+  const double horizontal = std::hypot(std::sin(theta) * std::cos(phi), std::sin(phi));  // |(k_xi, k_eta)|
+  return std::atan2(horizontal, std::cos(theta) * std::cos(phi));
+}
+
+double azimuth(double theta, double phi) {
+  return std::atan2(-std::sin(phi), std::sin(theta) * std::cos(phi));  // atan2(k_eta, k_xi); atan2(0, 0) = 0
+}
+
+double ContinuousAzimuth::operator()(double theta, double phi) {
+  const double k_xi = std::sin(theta) * std::cos(phi);
+  const double k_eta = -std::sin(phi);
+  if (k_xi == 0.0 && k_eta == 0.0) return previous_;  // vertical: no direction, keep the last one (0 at first)
+  const double wrapped = std::atan2(k_eta, k_xi);
+  if (!started_) {
+    started_ = true;
+    return previous_ = wrapped;
+  }
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  return previous_ = wrapped + kTwoPi * std::round((previous_ - wrapped) / kTwoPi);
+}
+
+void insert_axis_direction_columns(Trajectory& part, ContinuousAzimuth& continuous) {
+  std::vector<double> tilts(part.size()), azimuths(part.size());
+  for (std::size_t i = 0; i < part.size(); ++i) {
+    tilts[i] = tilt(part.theta[i], part.phi[i]);
+    azimuths[i] = continuous(part.theta[i], part.phi[i]);
+  }
+  part.extra.insert(part.extra.begin(), {{std::string(kAxisDirectionColumns[0]), std::move(tilts)},
+                                         {std::string(kAxisDirectionColumns[1]), std::move(azimuths)}});
 }
 
 }  // namespace heavytop

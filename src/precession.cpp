@@ -17,6 +17,15 @@ void validate_tilt(double tilt) {
     throw InvalidInput("tilt", "must be a finite angle in (0, pi) rad from the upward vertical");
 }
 
+// cos(tilt), 0 within the tilt's own rounding: cos of the double nearest pi/2 is 6e-17, one ulp
+// of the tilt, not a tilt off the horizontal. There the axle is horizontal (the classroom
+// gyroscope): the precession quadratic is linear (only the slow precession exists) and no
+// permanent rotation is possible, where 1/cos would give absurd rates of 1e17 rad/s.
+double cos_of_tilt(double tilt) {
+  const double c = std::cos(tilt);
+  return std::abs(c) <= std::nextafter(tilt, 4.0) - tilt ? 0.0 : c;
+}
+
 // SPEC section 2's state for the axis at `tilt` in the xi-zeta plane, precessing at `rate`
 // about the upward vertical with w.k = spin: k' = rate zeta x k = (0, rate sin(tilt), 0), so
 // theta' = 0 and phi' = -rate sin(tilt) (k_eta = -sin phi).
@@ -51,7 +60,7 @@ PrecessionAnalysis analyse_precession(const Body& body, double tilt, double spin
   PrecessionAnalysis r;
   r.tilt = tilt;
   r.spin = spin;
-  const double A = body.A, C = body.C, mgR = body.mgR(), c = std::cos(tilt);
+  const double A = body.A, C = body.C, mgR = body.mgR(), c = cos_of_tilt(tilt);
   // A cos(theta) Omega^2 - C w3 Omega + m g R = 0: the gravitational moment m g R sin(theta)
   // turns the angular momentum's horizontal part (docs/steady-precession.md).
   const double qa = A * c, qb = -C * spin, qc = mgR;
@@ -60,7 +69,7 @@ PrecessionAnalysis analyse_precession(const Body& body, double tilt, double spin
   if (mgR * c > 0.0) r.min_spin = 2.0 * std::sqrt(A * mgR * c) / C;
   const double disc = qb * qb - 4.0 * qa * qc;
   std::vector<double> roots;
-  if (qa == 0.0) {  // theta = pi/2 to the last bit: the quadratic is linear
+  if (qa == 0.0) {  // theta = pi/2 to rounding: the quadratic is linear
     if (qb != 0.0) roots.push_back(-qc / qb);
   } else if (disc >= 0.0) {
     const auto [x1, x2] = detail::quadratic_roots(qa, qb, qc, disc);
@@ -79,7 +88,7 @@ std::vector<PermanentRotation> permanent_rotations(const Body& body, double tilt
   refuse_general(body, "precession");
   validate_tilt(tilt);
   std::vector<PermanentRotation> out;
-  const double mgR = body.mgR(), c = std::cos(tilt), s = std::sin(tilt);
+  const double mgR = body.mgR(), c = cos_of_tilt(tilt), s = std::sin(tilt);
   for (const char plane : {'x', 'y'}) {
     const double K = plane == 'x' ? body.A : body.B;
     // The vertical gamma = (s_, 0, c) or (0, s, c) in body axes, w = Omega gamma; Euler's

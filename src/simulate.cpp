@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "heavytop/frames.hpp"
 #include "heavytop/lagrange_exact.hpp"
 
 #include "detail/integration.hpp"
@@ -196,10 +197,17 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
   s.model = model;
   // Every piece is checked before it is handed on: a failure never passes a NaN along.
   detail::SampleStream samples = stream;
+  // Here, once for every model and integrator, the people's columns tilt and azimuth are put
+  // after SPEC's five, and taken out again after the piece is handed on: the integrators index
+  // their own extra columns and reuse the piece.
+  ContinuousAzimuth azimuth;
   samples.flush = [&](Trajectory& part) {
     check_finite(model, part);
     s.samples += part.size();
+    insert_axis_direction_columns(part, azimuth);
     stream.flush(part);
+    if (part.extra.size() >= kAxisDirectionColumns.size() && part.extra.front().first == kAxisDirectionColumns[0])
+      part.extra.erase(part.extra.begin(), part.extra.begin() + kAxisDirectionColumns.size());
   };
   try {
     if (const auto kind = linear_kind(model)) {

@@ -21,5 +21,16 @@ check "an asymmetric body's report" test $? -eq 0
 NODE_PATH="$NODE_MODULES" "$NODE" "$(dirname "$0")/browser_report.cjs" "$CHROMIUM" "$ARTEFACTS" \
   example="$PWD/heavytop-report" asymmetric="$PWD/asymmetric"
 check "in the browser" test $? -eq 0
+# The answer first (SPEC 14): the example (proven stable), a top too slow (falls), a damped one.
+"$H" stability --format json > example.json
+"$H" report --spin 100 --output falling > /dev/null && "$H" stability --spin 100 --format json > falling.json
+check "a falling body's report" test $? -eq 0
+"$H" report --axial-damping 2e-6 --output damped > /dev/null && "$H" stability --axial-damping 2e-6 --format json > damped.json &&
+  "$H" lifetime --axial-damping 2e-6 --format json > damped-lifetime.json
+check "a damped body's report" test $? -eq 0
+NODE_PATH="$NODE_MODULES" "$NODE" "$(dirname "$0")/browser_answer.cjs" "$CHROMIUM" \
+  example="$PWD/heavytop-report,example.json" falling="$PWD/falling,falling.json" \
+  damped="$PWD/damped,damped.json,damped-lifetime.json"
+check "the answer first, in the browser" test $? -eq 0
 echo "screenshots: $ARTEFACTS"
 finish

@@ -159,7 +159,7 @@ done
 check "splitting agrees with lagrange-exact" python3 -c '
 import csv
 a = list(csv.reader(open("split.csv"))); b = list(csv.reader(open("exact.csv")))
-assert a[0][5:] == ["energy", "vertical_momentum", "axial_momentum", "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"]
+assert a[0][5:] == ["tilt", "azimuth", "energy", "vertical_momentum", "axial_momentum", "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"]
 assert max(abs(float(x) - float(y)) for ra, rb in zip(a[1:], b[1:]) for x, y in zip(ra[1:3], rb[1:3])) < 1e-9'
 # Damping and friction (SPEC 6) and the lifetime (SPEC 8).
 for cmd in stability simulate lifetime; do

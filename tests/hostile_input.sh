@@ -65,7 +65,7 @@ check "a second report into one folder is refused" bash -c "
 
 # ---- 2. The report: every body, every folder name, all or nothing ------------------------------
 check "the sleeping top (theta0 = 0) has a report" run 0 report --theta0 0 --output sleeping
-check "... with all its figures" test "$(ls sleeping/*.svg | wc -l)" -eq 6
+check "... with all its figures" test "$(ls sleeping/*.svg | wc -l)" -eq 7
 check "a folder name with quotes" run 0 report --output "it's \"here\"" --t-end 0.5
 check "... has its figures" test -s "it's \"here\"/errors.png"
 check "the hanging body's report does not explain a Jordan block at w0 = 0" bash -c "

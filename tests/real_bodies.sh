@@ -249,7 +249,7 @@ check "... naming body.Ixy and the model that takes it" says "body.Ixy: is 0.01:
 check "simulate --model first-order refuses it" run 2 simulate --model first-order --config general.toml
 check "... naming body.offset_x" says "body.offset_x: is nonzero: .*not by simulate --model first-order"
 check "simulate --model nonlinear integrates SPEC 11's keys" run 0 simulate --model nonlinear --config general.toml --t-end 0.5 --samples 6
-check "... a CSV with the nonlinear columns" bash -c "head -1 out | grep -q '^t,theta,phi,theta_rate,phi_rate,energy,vertical_momentum'"
+check "... a CSV with the nonlinear columns" bash -c "head -1 out | grep -q '^t,theta,phi,theta_rate,phi_rate,tilt,azimuth,energy,vertical_momentum'"
 printf '[body]\nA = 1\nB = 1\nC = 1.5\nmass = 1\nlength = 0.1\nIxy = 1.2\n' > impossible.toml
 check "a tensor that is not positive definite: exit 2" run 2 simulate --model nonlinear --config impossible.toml
 check "... naming body.Ixy" says "body.Ixy: the inertia tensor .* must be positive definite"

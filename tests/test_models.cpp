@@ -280,15 +280,13 @@ TEST_P(EveryModelOnEveryBody, HasTheSpecColumnsAndEverySample) {
   const std::vector<std::string> names = tr.column_names();
   ASSERT_GE(names.size(), kTrajectoryColumns.size());
   for (std::size_t c = 0; c < kTrajectoryColumns.size(); ++c) EXPECT_EQ(names[c], kTrajectoryColumns[c]);
+  // SPEC section 2: every model's tilt and azimuth right after the five.
+  std::vector<std::string> extra = {"tilt", "azimuth"};
   const bool nonlinear = s.model == Model::Nonlinear;
-  if (nonlinear) {
-    const std::vector<std::string> extra = {
-        "energy",       "vertical_momentum",       "axial_momentum",
-        "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
-    EXPECT_EQ(std::vector<std::string>(names.begin() + 5, names.end()), extra);
-  } else {
-    EXPECT_EQ(names.size(), kTrajectoryColumns.size());
-  }
+  if (nonlinear)
+    extra.insert(extra.end(), {"energy", "vertical_momentum", "axial_momentum", "energy_drift",
+                               "vertical_momentum_drift", "axial_momentum_drift"});
+  EXPECT_EQ(std::vector<std::string>(names.begin() + 5, names.end()), extra);
   for (std::size_t c = 0; c < names.size(); ++c) {
     ASSERT_EQ(tr.column(c).size(), times.size()) << names[c];
     for (double v : tr.column(c)) ASSERT_TRUE(std::isfinite(v)) << names[c];

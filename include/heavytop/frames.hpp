@@ -3,6 +3,9 @@
 /// Frames and the paper's small angles, exactly as SPEC section 2 defines them.
 /// Fixed frame (xi, eta, zeta), zeta up; k is the unit vector of the body's spin axis.
 
+#include <array>
+#include <string_view>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -29,8 +32,36 @@ Eigen::Vector3d axis_frame_rate(double phi, double theta, double phi_rate, doubl
 /// Exact inverse of k = (sin theta cos phi, -sin phi, cos theta cos phi).
 AxisAngles axis_angles(const Eigen::Vector3d& k, const Eigen::Vector3d& k_rate);
 
-/// rad, the tilt of the axis from the upward vertical, acos(k_zeta) = acos(cos theta cos phi).
+/// rad, in [0, pi]: the tilt of the axis from the upward vertical, acos(k_zeta) = acos(cos theta
+/// cos phi) (SPEC section 2), computed as atan2(|k_perp|, k_zeta) so that it keeps full relative
+/// precision near the vertical, where acos loses half the digits.
 double tilt(double theta, double phi);
+
+/// rad, in (-pi, pi]: the direction the axis leans to, atan2(k_eta, k_xi) (0 for a vertical axis).
+double azimuth(double theta, double phi);
+
+/// The people's columns of every trajectory (SPEC section 2): they follow SPEC's five, in
+/// this order, in every simulate output.
+inline constexpr std::array<std::string_view, 2> kAxisDirectionColumns = {"tilt", "azimuth"};
+
+/// The azimuth made continuous in time, sample after sample (SPEC section 2): the first sample
+/// is azimuth(theta, phi) in (-pi, pi] (0 for a vertical axis); each later one differs from
+/// azimuth(theta, phi) by the multiple of 2 pi that brings it within pi of the previous sample;
+/// while the axis is exactly vertical (tilt 0, no direction) it keeps the previous value.
+class ContinuousAzimuth {
+ public:
+  /// rad, the next sample's continuous azimuth.
+  double operator()(double theta, double phi);
+
+ private:
+  double previous_ = 0.0;
+  bool started_ = false;
+};
+
+/// Inserts the columns kAxisDirectionColumns (tilt, azimuth; rad) at the front of `part.extra`,
+/// computed from its theta and phi, the azimuth continued from `azimuth`'s previous samples
+/// (consecutive pieces of one trajectory share one ContinuousAzimuth).
+void insert_axis_direction_columns(Trajectory& part, ContinuousAzimuth& azimuth);
 
 /// The body's attitude and angular velocity at t = 0 for `linearized` and `nonlinear`
 /// (SPEC section 2): principal axes x, y, z are the columns of Q(phi0, theta0) (psi = 0),

@@ -15,6 +15,7 @@
 #include "heavytop/frames.hpp"          // the frames and angles (SPEC section 2)
 #include "heavytop/linear_models.hpp"   // the three linear models as data
 #include "heavytop/stability.hpp"       // linear stability and the stable spins
+#include "heavytop/answer.hpp"          // the answer first: does it stay up, for how long (SPEC 14)
 #include "heavytop/lyapunov.hpp"        // the real body's Lyapunov verdict and the wander
 #include "heavytop/linear_motion.hpp"   // motion of the linear models
 #include "heavytop/nonlinear.hpp"       // the full rigid body, integrated adaptively

@@ -40,11 +40,12 @@ void add_damping(Json& out, const Body& b) {
 
 namespace {
 
-Json stability_object(const Body& body, double spin, const std::vector<ModelStability>& models) {
+Json stability_object(const Body& body, double spin, const std::vector<ModelStability>& models, Json answer) {
   Json out;
   out["body"] = body_json(body);
   add_damping(out, body);
   out["spin"] = spin;
+  out["answer"] = std::move(answer);  // SPEC 14: what a person asks first
   Json by_name = Json::object();
   for (const auto& r : models) {
     Json m;
@@ -77,9 +78,27 @@ Json intervals_json(const std::vector<SpinInterval>& intervals) {
 
 }  // namespace
 
-std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models,
-                           const LyapunovStability& lyapunov, const Wander& wander) {
-  Json out = stability_object(body, spin, models);
+namespace {
+
+Json answer_object(const Answer& a) {
+  Json out;
+  out["verdict"] = std::string(name(a.verdict));
+  out["proven"] = a.proven;
+  out["reason"] = answer_reason(a);
+  out["max_tilt"] = optional_number(a.max_tilt);
+  out["falls_at"] = optional_number(a.falls_at);
+  out["horizon"] = a.horizon;
+  out["min_spin"] = optional_number(a.min_spin);
+  out["lifetime"] = optional_number(a.lifetime);
+  return out;
+}
+
+}  // namespace
+
+std::string stability_json(const Body& body, const TopAnalysis& analysis) {
+  const double spin = analysis.spin;
+  const auto& [_, models, lyapunov, wander, answer] = analysis;
+  Json out = stability_object(body, spin, models, answer_object(answer));
   Json l;
   l["verdict"] = std::string(name(lyapunov.verdict.verdict));
   l["certificate"] = std::string(name(lyapunov.verdict.certificate));
@@ -176,13 +195,16 @@ std::string linear_stability_text(const Body& body, double spin, const std::vect
 
 }  // namespace
 
-std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models,
-                           const LyapunovStability& lyapunov, const Wander& wander) {
+std::string stability_text(const Body& body, const TopAnalysis& analysis) {
+  const double spin = analysis.spin;
+  const auto& [_, models, lyapunov, wander, answer] = analysis;
   std::ostringstream out;
+  out << answer_text(answer) << "\n\n";
+  out << "The details\n-----------\n";
   out << linear_stability_text(body, spin, models);
   const LyapunovVerdict& v = lyapunov.verdict;
   out << fmt::format("\nThe real body (nonlinear, conservative{}), beyond the linearisation:\n",
-                     body.damping.conservative() ? "" : ": the damping above ignored");
+                     body.damping.conservative() ? "" : ": the damping above ignored here; the answer above includes it");
   out << fmt::format("  linearly stable (the exact linearisation): {}\n",
                      models.back().verdict.stable ? "yes" : "no");
   out << fmt::format("  Lyapunov: {} ({}; certificate {})\n", name(v.verdict), v.reason, name(v.certificate));
@@ -204,6 +226,7 @@ std::string stability_text(const Body& body, double spin, const std::vector<Mode
                                           : fmt::format("integrated over {:g} s", wander.horizon.value_or(0.0)));
   else
     out << fmt::format("  Axis wander from the given state: not computed ({})\n", wander.note);
+  out << "\n" << kStabilityGlossary;
   return out.str();
 }
 
@@ -225,6 +248,11 @@ std::string spin_text(double w) { return fmt::format("{:.6g} rad/s ({:.5g} rpm)"
 std::string lifetime_text(const Body& body, const InitialState& initial, const Lifetime& life) {
   std::ostringstream out;
   const Damping& d = body.damping;
+  // The answer first (SPEC 14): how long it stays up.
+  out << (life.fall_time ? fmt::format("Falls after {:.4g} s (its tilt passes {:.3g} degrees).\n", *life.fall_time,
+                                       life.max_tilt * 180.0 / M_PI)
+                         : fmt::format("Stays up for the {:.4g} s computed (its tilt stays below {:.3g} degrees).\n",
+                                       life.horizon, life.max_tilt * 180.0 / M_PI));
   out << fmt::format("Spin {} with axial damping d_a = {:g} N m s, friction tau0 = {:g} N m, transverse "
                      "damping d_t = {:g} N m s{}.\n",
                      spin_text(initial.spin), d.axial, d.friction, d.transverse,

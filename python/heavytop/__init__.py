@@ -1,7 +1,7 @@
 """heavytop: the heavy top (a rigid body turning about a fixed point O in uniform gravity,
 spinning fast about its axis), its approximate models, their stability and motion.
 
-Units are SI everywhere: kg, m, s, rad (rates rad/s). The conventions are SPEC.md's:
+Units are SI everywhere: kg, m, s, rad (rates rad/s). The conventions are those of docs/contract.md in heavytop's repository:
 
   Fixed frame (xi, eta, zeta), zeta vertical and up. Body frame: principal axes x, y, z
   through O, z the spin axis. k = the unit vector of the spin axis, and the paper's angles are
@@ -38,13 +38,13 @@ from ._api import (body_from_parts, body_report, compare, derive, derive_check, 
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
-                      StabilityMap, Trajectory, Wander)
+                      StabilityMap, Trajectory, Wander, Answer)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
     "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
     "body_from_parts", "body_report", "precession", "rpm",
-    "results", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
+    "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
 ]

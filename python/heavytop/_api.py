@@ -29,7 +29,7 @@ Sequence = Literal["phi-theta", "theta-phi"]
 
 
 def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
-              phi_rate0: float = 0.0, horizon: float = 100.0) -> Stability:
+              phi_rate0: float = 0.0, horizon: float = 100.0, max_tilt: float = 1.0) -> Stability:
     """Linear stability of the first-order, body-fixed and linearized models at spin w0, the
     real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders.
 
@@ -39,9 +39,20 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
                      rad, rad/s: the state the wander starts from (SPEC section 2); all 0 (the
                      upright rotation, which never tilts) by default
         horizon      s, > 0: for A != B the wander is the largest tilt of a nonlinear run this
-                     long (A = B: exact, from the Lagrange top's cubic)
+                     long (A = B: exact, from the Lagrange top's cubic); the answer's run when
+                     the Lyapunov verdict does not prove it stable
+        max_tilt     rad, in (0, pi]: the tilt past which the answer says it has fallen
 
-    Returns a Stability: .body, .spin (rad/s), .models[NAME] (NAME first-order, body-fixed,
+    The motion's defaults are those of a configuration file without [motion] (SPEC section
+    4): every key 0, spin included; the command line uses the same rule as soon as a body is
+    described (only its built-in example brings its own motion).
+
+    Returns a Stability whose repr() (and _repr_html_ in a notebook) starts with .answer, the
+    answer in words (SPEC section 14: "Stays up. Spinning at 200 rad/s (1910 rpm) ...");
+    .answer.verdict, .proven, .max_tilt, .falls_at, .horizon, .min_spin, .lifetime are
+    result["answer"].
+
+    Also: .body, .spin (rad/s), .models[NAME] (NAME first-order, body-fixed,
     linearized) with .stable, .critical_spin (rad/s or None), .stable_spin_intervals
     ((lo, hi or None) pairs, rad/s), .eigenvalues (complex, 1/s), .frequencies (rad/s, when
     stable), .reason. It is also a Mapping: result["models"] and result.to_dict() are
@@ -58,8 +69,9 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
 
     Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".
     """
-    return Stability.from_json(_core.stability(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
-                                               phi_rate0=phi_rate0, horizon=horizon))
+    data, words = _core.stability(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                                  phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt)
+    return Stability.from_json(data, words)
 
 
 def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float] = None,

@@ -14,6 +14,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+import html
 from typing import Any, Dict, Iterator, Optional, Tuple
 
 import numpy as np
@@ -22,7 +23,7 @@ import numpy.typing as npt
 from ._core import Body
 
 __all__ = [
-    "JsonResult", "ModelStability", "Lyapunov", "Wander", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
+    "JsonResult", "ModelStability", "Lyapunov", "Wander", "Answer", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
     "StabilityMap", "FittedParameter", "DecayFit",
 ]
@@ -172,6 +173,50 @@ class Lifetime(JsonResult):
 
 
 @dataclass(frozen=True, eq=False)
+class Answer(JsonResult):
+    """Does it stay up, and for how long (SPEC section 14): result["answer"] of `heavytop
+    stability --format json`; ``text`` is the paragraph the command line's text opens with."""
+
+    verdict: str
+    """"stays up" (proven) | "falls" (a computed fall) | "stays up for the horizon" (not proven)."""
+    proven: bool
+    """True for a Lyapunov proof or a computed fall."""
+    reason: str
+    """One sentence in plain words."""
+    max_tilt: Optional[float]
+    """rad, the largest tilt from the vertical (the wander when proven stable)."""
+    falls_at: Optional[float]
+    """s, when the tilt first passes the fall's threshold (None: it does not fall)."""
+    horizon: float
+    """s, the horizon of the run that decided (or would have)."""
+    min_spin: Optional[float]
+    """rad/s, the smallest spin proven stable (Lyapunov); None when none is."""
+    lifetime: Optional[float]
+    """s, a damped body's fall time; None otherwise."""
+    text: str
+    """The answer in words: spins in rad/s and rpm, angles in degrees and rad."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any], text: str) -> "Answer":
+        return cls(verdict=data["verdict"], proven=data["proven"], reason=data["reason"], max_tilt=data["max_tilt"],
+                   falls_at=data["falls_at"], horizon=data["horizon"], min_spin=data["min_spin"],
+                   lifetime=data["lifetime"], text=text, _data=data)
+
+    def __repr__(self) -> str:
+        return self.text
+
+    def _repr_html_(self) -> str:
+        colour = "#c62828" if self.verdict == "falls" else "#1a7f1a" if self.proven else "#f9a825"
+        return (f"<p style='border-left: 5px solid {colour}; padding: .3em .8em; font-size: 1.1em'>"
+                f"{html.escape(self.text)}</p>")
+
+
+def _optional(value: Optional[float], unit: str) -> str:
+    return "none" if value is None else f"{value:.6g} {unit}"
+
+
+@dataclass(frozen=True, eq=False)
 class Stability(JsonResult):
     """Linear stability of the first-order, body-fixed and linearized models at one spin:
     `heavytop stability --format json` (``to_dict()`` is json.loads of it)."""
@@ -186,16 +231,35 @@ class Stability(JsonResult):
     """The real body's verdict beyond the linearisation (SPEC section 7)."""
     wander: Wander
     """The largest tilt of the motion from the state given."""
+    answer: Answer
+    """Does it stay up, and for how long (SPEC section 14): the first thing repr() says."""
     _data: Dict[str, Any] = field(repr=False)
 
     @classmethod
-    def from_json(cls, data: Dict[str, Any]) -> "Stability":
+    def from_json(cls, data: Dict[str, Any], answer_text: str) -> "Stability":
         b = data["body"]
         body = Body(b["A"], b["B"], b["C"], mass=b["mass"], length=b["length"], gravity=b["gravity"])
         return cls(body=body, spin=data["spin"],
                    models={name: ModelStability.from_json(m) for name, m in data["models"].items()},
                    lyapunov=Lyapunov.from_json(data["lyapunov"]), wander=Wander.from_json(data["wander"]),
-                   _data=data)
+                   answer=Answer.from_json(data["answer"], answer_text), _data=data)
+
+    def _rows(self) -> Tuple[Tuple[str, str, str], ...]:
+        rows = tuple((name, "stable" if m.stable else "unstable", _optional(m.critical_spin, "rad/s"))
+                     for name, m in self.models.items())
+        return rows + (("real body (Lyapunov)", f"{self.lyapunov.verdict} ({self.lyapunov.certificate})",
+                        _optional(self.answer.min_spin, "rad/s")),)
+
+    def __repr__(self) -> str:
+        lines = [self.answer.text, "", f"{'model':<22} {'verdict':<28} critical spin"]
+        lines += [f"{name:<22} {verdict:<28} {critical}" for name, verdict, critical in self._rows()]
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        rows = "".join(f"<tr><td>{html.escape(n)}</td><td>{html.escape(v)}</td><td>{html.escape(c)}</td></tr>"
+                       for n, v, c in self._rows())
+        return (self.answer._repr_html_() + "<table><tr><th>model</th><th>verdict</th><th>critical spin</th></tr>"
+                + rows + "</table>")
 
 
 # ---- compare ---------------------------------------------------------------------------------
@@ -506,6 +570,8 @@ class Trajectory(_Columns):
     phi = _column("phi", "rad, phi = -asin(k_eta): the spin axis's tilt about xi")
     theta_rate = _column("theta_rate", "rad/s, theta'")
     phi_rate = _column("phi_rate", "rad/s, phi'")
+    tilt = _column("tilt", "rad, in [0, pi]: the angle of the spin axis from the upward vertical, acos(k_zeta)")
+    azimuth = _column("azimuth", "rad, the direction the axis leans to, atan2(k_eta, k_xi), continuous in time")
     energy = _column("energy", "J, E (nonlinear only)")
     vertical_momentum = _column("vertical_momentum", "kg m^2/s, L_zeta (nonlinear only)")
     axial_momentum = _column("axial_momentum", "kg m^2/s, C w3, conserved only when A == B (nonlinear only)")
@@ -525,14 +591,15 @@ class Trajectory(_Columns):
 
     @property
     def columns(self) -> Tuple[str, ...]:
-        """The column names in the CSV's order: t, theta, phi, theta_rate, phi_rate, then the
-        model's extra columns."""
+        """The column names in the CSV's order: t, theta, phi, theta_rate, phi_rate, tilt,
+        azimuth, then the model's extra columns."""
         return tuple(self._columns)
 
     @property
     def extra(self) -> Dict[str, FloatArray]:
-        """The columns after the first five (the nonlinear model's conserved quantities)."""
-        return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= 5}
+        """The columns after the first seven (the nonlinear model's conserved quantities, the
+        damping's columns)."""
+        return {name: column for i, (name, column) in enumerate(self._columns.items()) if i >= 7}
 
     def __repr__(self) -> str:
         return (f"Trajectory(model={self._model!r}, samples={len(self._columns['t'])}, "

@@ -5,6 +5,7 @@
 
 #include "bindings.hpp"
 #include "docs.hpp"
+#include "heavytop/answer.hpp"
 #include "heavytop/compare.hpp"
 #include "heavytop/lifetime.hpp"
 #include "heavytop/simulate.hpp"
@@ -19,15 +20,28 @@ using namespace pybind11::literals;
 
 namespace {
 
-py::object stability(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
-                     double phi_rate0, double horizon) {
+/// (json.loads of `stability --format json`, the answer's paragraph in words): the words are
+/// io's, the same the command line's text opens with.
+py::tuple stability(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
+                    double phi_rate0, double horizon, double max_tilt) {
   validate(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   require_positive("horizon", horizon);
-  return from_json(without_gil([&] {
-    return io::stability_json(body, spin, analyse_stability(body, spin), analyse_lyapunov(body, spin),
-                              axis_wander(body, state, horizon));
-  }));
+  AnswerOptions options;
+  options.horizon = horizon;
+  options.max_tilt = max_tilt;
+  if (std::string why; !options.IsValid(&why)) {
+    const auto colon = why.find(": ");
+    throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
+  }
+  std::string json, words;
+  without_gil([&] {
+    const TopAnalysis analysis = analyse_top(body, state, options);
+    json = io::stability_json(body, analysis);
+    words = io::answer_text(analysis.answer);
+    return 0;
+  });
+  return py::make_tuple(from_json(json), words);
 }
 
 py::object compare(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
@@ -67,7 +81,7 @@ void bind_analyses(py::module_& m) {
         "theta_rate0"_a, "phi_rate0"_a, "horizon"_a = py::none(), "max_tilt"_a = 1.0, "rtol"_a = py::none(),
         "atol"_a = py::none(), "max_steps"_a = py::none());
   m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a, py::kw_only(), "theta0"_a = 0.0,
-        "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0);
+        "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0, "max_tilt"_a = 1.0);
   m.def("compare", &compare, docs::kCoreCompare, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
         "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "samples"_a, "rtol"_a = py::none(), "atol"_a = py::none());
 }

@@ -64,10 +64,11 @@ def test_trajectory_attributes_are_its_columns():
     assert result.columns == tuple(result) == tuple(result.to_dict())
     for name in result.columns:
         assert getattr(result, name) is result[name] is result.to_dict()[name]
-    assert list(result.extra) == list(result.columns[5:]) == ["energy", "vertical_momentum", "axial_momentum",
+    assert list(result.columns[5:7]) == ["tilt", "azimuth"]
+    assert list(result.extra) == list(result.columns[7:]) == ["energy", "vertical_momentum", "axial_momentum",
                                                                "energy_drift", "vertical_momentum_drift",
                                                                "axial_momentum_drift"]
-    assert result.model == "nonlinear" and len(result) == 11 and "energy" in result
+    assert result.model == "nonlinear" and len(result) == 13 and "energy" in result
     summary = result.summary
     assert isinstance(summary, heavytop.SimulationSummary)
     assert summary.ok and summary.termination == "success" and summary.message == ""
@@ -77,7 +78,7 @@ def test_trajectory_attributes_are_its_columns():
     assert str(summary) == summary.report and summary.report.startswith("nonlinear (Dormand-Prince 5(4)): 101 samples")
 
     linear = heavytop.simulate(TOP, "first-order", **MOTION, t_end=0.5, samples=101)
-    assert linear.columns == ("t", "theta", "phi", "theta_rate", "phi_rate") and linear.extra == {}
+    assert linear.columns == ("t", "theta", "phi", "theta_rate", "phi_rate", "tilt", "azimuth") and linear.extra == {}
     assert linear.summary.solver == "closed form" and linear.summary.max_relative_energy_drift is None
     with pytest.raises(AttributeError, match="first-order trajectory has no column 'energy'"):
         linear.energy

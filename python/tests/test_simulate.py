@@ -10,7 +10,7 @@ import pytest
 import heavytop
 from conftest import BODIES, body_options, motion_options, run_cli
 
-COLUMNS = ["t", "theta", "phi", "theta_rate", "phi_rate"]
+COLUMNS = ["t", "theta", "phi", "theta_rate", "phi_rate", "tilt", "azimuth"]
 NONLINEAR_EXTRAS = ["energy", "vertical_momentum", "axial_momentum", "energy_drift",
                     "vertical_momentum_drift", "axial_momentum_drift"]
 REFERENCE = dict(spin=1.6, theta0=0.01, phi0=0.02)  # tests/test_linear_motion.cpp

@@ -137,7 +137,8 @@ std::vector<SeriesFile> write_trajectories(const Comparison& c, double r, const 
     std::ofstream out(scratch.path(f.path));
     auto row = [&](std::size_t i) {
       const Eigen::Vector3d k = axis_frame(tr.phi[i], tr.theta[i]).col(2);
-      return fmt::format("{} {} {} {} {} {}\n", tr.t[i], tr.theta[i], tr.phi[i], angle_error(tr, c.nonlinear, i), k.x(), k.y());
+      return fmt::format("{} {} {} {} {} {} {}\n", tr.t[i], tr.theta[i], tr.phi[i], angle_error(tr, c.nonlinear, i),
+                         k.x(), k.y(), tilt(tr.theta[i], tr.phi[i]));
     };
     const std::vector<std::size_t> shown = display_samples(tr.size());
     std::size_t next = 0;  // into shown
@@ -171,7 +172,7 @@ std::string plot_list(const std::vector<SeriesFile>& files, const std::string& c
   std::string list;
   for (const SeriesFile& f : files) {
     if (skip_truth && f.model == "nonlinear") continue;
-    const std::string title = f.leaves_at ? fmt::format("{} (leaves at {:.3g} s)", f.model, *f.leaves_at)
+    const std::string title = f.leaves_at ? fmt::format("{} (leaves the chart at {:.3g} s)", f.model, *f.leaves_at)
                                           : f.model == "nonlinear" ? std::string("nonlinear (truth)") : f.model;
     list += fmt::format("{}'{}' using {} with lines {} title '{}'", list.empty() ? "" : ", \\\n  ", f.path, columns,
                         line_style(f.model), title);
@@ -213,18 +214,26 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   // The key in its own column right of the frames (long titles never reach into them).
   const char* key = "set key outside right top Left reverse width 1\nset rmargin at screen 0.68\n";
 
-  std::string angles = fmt::format(
-      "set multiplot layout 2,1 title 'Angles of the axis: every model from the same start'\n"
-      "set grid\n{0}set yrange [{1}:{2}]\nset format y '%g'\nset ylabel 'theta ({3})'\nunset xlabel\n",
-      key, -r * unit.scale, r * unit.scale, unit.name);
-  const std::string theta = fmt::format("1:($2*{})", unit.scale), phi = fmt::format("1:($3*{})", unit.scale);
-  angles += "plot " + plot_list(files, theta);
-  angles += fmt::format("set ylabel 'phi ({})'\nset xlabel 't (s)'\nunset key\n", unit.name);
-  angles += "plot " + plot_list(files, phi);
-  angles += "unset multiplot\n";
-  figures.push_back(render("angles", "theta(t) and phi(t) of every model; the nonlinear body (black, drawn on top) is "
-                           "the truth; a model that leaves the chart ends in a cross, its title says when.",
-                           angles, scratch, 1500, 1000));
+  // First what people read: the tilt from the vertical, in degrees (rad on the right axis).
+  double largest_tilt = 0.0;
+  for (std::size_t i = 0; i < c.nonlinear.size(); ++i)
+    largest_tilt = std::max(largest_tilt, tilt(c.nonlinear.theta[i], c.nonlinear.phi[i]));
+  const double tilt_top = std::min(largest_tilt > 0.0 ? 1.25 * largest_tilt : 1e-3, std::numbers::pi) * 180.0 /
+                          std::numbers::pi;
+  // Round ticks on both axes: rad at 1, 2 or 5 times a power of ten, about five of them.
+  const double rad_top = tilt_top * std::numbers::pi / 180.0;
+  const double decade = std::pow(10.0, std::floor(std::log10(rad_top / 5.0)));
+  const double rad_step = rad_top / 5.0 / decade < 2.0 ? decade : rad_top / 5.0 / decade < 5.0 ? 2.0 * decade : 5.0 * decade;
+  std::string tilts = fmt::format(
+      "set title 'Tilt of the axis from the vertical: every model from the same start'\nset grid\n"
+      "set key outside bottom center horizontal Left reverse width 2\n"
+      "set yrange [0:{0}]\nset format y '%g'\nset ylabel 'tilt (degrees)'\nset y2tics {1:g}\nset format y2 '%g'\n"
+      "set link y2 via y*pi/180 inverse y*180/pi\nset y2label 'tilt (rad)'\nset xlabel 't (s)'\nplot ",
+      tilt_top, rad_step);
+  tilts += plot_list(files, "1:($7*180/pi)");
+  figures.push_back(render("tilt", "The tilt of the axis from the upward vertical against time (degrees on the left, "
+                           "rad on the right); the nonlinear body (black, drawn on top) is the truth.",
+                           tilts, scratch, 1500, 800));
 
   // From above (looking down zeta, xi to the right, eta up) the tip of the unit axis is at
   // (k_xi, k_eta) = (sin theta cos phi, -sin phi), to first order (theta, -phi): plotting
@@ -238,6 +247,20 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   figures.push_back(render("axis-path", "The tip of the axis seen from above (xi to the right, eta up; to first order "
                            "(theta, -phi)), every model: the nutation loops and cusps as the precession carries them round.",
                            path, scratch, 1500, 1000));
+
+  std::string angles = fmt::format(
+      "set multiplot layout 2,1 title \"The paper's angles theta, phi: every model from the same start\"\n"
+      "set grid\n{0}set yrange [{1}:{2}]\nset format y '%g'\nset ylabel 'theta ({3})'\nunset xlabel\n",
+      key, -r * unit.scale, r * unit.scale, unit.name);
+  const std::string theta = fmt::format("1:($2*{})", unit.scale), phi = fmt::format("1:($3*{})", unit.scale);
+  angles += "plot " + plot_list(files, theta);
+  angles += fmt::format("set ylabel 'phi ({})'\nset xlabel 't (s)'\nunset key\n", unit.name);
+  angles += "plot " + plot_list(files, phi);
+  angles += "unset multiplot\n";
+  figures.push_back(render("angles", "The paper's small angles theta(t) and phi(t) of every model (they swing "
+                           "through zero as the axis goes round, while the tilt above stays put); the nonlinear body (black, drawn on top) is "
+                           "the truth; a model that leaves the chart ends in a cross, its title says when.",
+                           angles, scratch, 1500, 1000));
 
   std::string errors = std::string("set title 'Error of each model against the nonlinear body'\nset grid\nset logscale y\n"
                                    "set format y '10^{%L}'\n") + key +

@@ -13,6 +13,7 @@
 #include "heavytop/report/animation.hpp"
 #include "heavytop/report/figures.hpp"
 #include "heavytop/report/report.hpp"
+#include "heavytop/answer.hpp"
 #include "heavytop/compare.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
@@ -264,6 +265,8 @@ figure { margin: 1.5em 0; } figure img { width: 100%; border: 1px solid #ddd; } 
 .controls button { font-size: 1em; padding: .25em 1.2em; } #scrub { width: 22em; }
 .plot { margin: 1em 0; } #explorer { width: 100%; max-width: 1000px; border: 1px solid #ddd; cursor: crosshair; }
 b.ok { color: #1a7f1a; } b.bad { color: #c62828; }
+p.answer { font-size: 1.25em; padding: .6em 1em; border-left: 6px solid #888; background: #f6f6f6; }
+p.answer.up { border-color: #1a7f1a; } p.answer.falls { border-color: #c62828; } p.answer.unproven { border-color: #f9a825; }
 )";
 
 }  // namespace
@@ -310,8 +313,28 @@ std::vector<std::pair<std::string, StabilityMap>> ReportMap::heat_maps() const {
   return out;
 }
 
+namespace {
+
+/// s, the motion the report shows: up to the fall and a fifth more when the body falls (the
+/// answer's run), else natural_horizon() (several nutation and precession periods).
+double report_horizon(const Body& body, const InitialState& state, const Answer& answer) {
+  if (answer.falls_at && *answer.falls_at > 0.0) return 1.2 * *answer.falls_at;
+  return natural_horizon(body, state.spin);
+}
+
+/// "a symmetric top", "a damped asymmetric top", "a hanging symmetric body", ...
+std::string body_words(const Body& body) {
+  const std::string shape = is_symmetric(body) ? "symmetric" : "asymmetric";
+  const std::string damped = body.damping.conservative() ? "" : body.damping.driven ? "driven, damped " : "damped ";
+  const std::string kind = body.length > 0 ? "top" : body.length < 0 ? "hanging body" : "body balanced at its centre of mass";
+  const std::string words = damped + shape + " " + kind;
+  return (std::string("aeiou").find(words[0]) != std::string::npos ? "an " : "a ") + words;
+}
+
+}  // namespace
+
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
-                  const std::optional<ReportMap>& map) {
+                  const std::optional<ReportMap>& map, const std::string& source) {
   // A map's heat maps first: bad slices are refused before the folder is made.
   const auto heat_maps = map ? map->heat_maps() : std::vector<std::pair<std::string, StabilityMap>>{};
   std::error_code ec;
@@ -322,11 +345,11 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   const io::OutputLock lock((fs::path(dir) / "report").string(), "--output", dir);
   const Staging staging;
 
-  const auto reports = analyse_stability(body, state.spin);
-  const LyapunovStability lyapunov = analyse_lyapunov(body, state.spin);
-  const double horizon = t_end.value_or(natural_horizon(body, state.spin));
+  // The answer first (SPEC 14), as `stability` gives it; the motion shown covers what it says.
+  const TopAnalysis analysis = analyse_top(body, state);
+  const auto& [analysed_spin, reports, lyapunov, wander, answer] = analysis;
+  const double horizon = t_end.value_or(report_horizon(body, state, answer));
   const Comparison c = compare_models(body, state, sample_times(horizon, 4001));
-  const Wander wander = axis_wander(body, state, horizon);
 
   std::vector<Figure> figures = plot_motion(staging.path(), c);
   DiagramGrid diagram;
@@ -348,13 +371,15 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
     map_figures.push_back(plot_sweep_map(staging.path(), two, fmt::format("map-{}", map_figures.size() + 1), where));
   // With damping: how long it stays up (SPEC section 8).
   std::optional<Lifetime> life;
+  std::optional<Figure> life_figure;
   if (!body.damping.conservative()) {
     life = lifetime(body, state);
-    figures.push_back(plot_lifetime(staging.path(), body, state, *life));
+    life_figure = plot_lifetime(staging.path(), body, state, *life);
+    figures.push_back(*life_figure);
   }
 
   std::vector<std::pair<std::string, std::string>> data = {
-      {"stability.json", io::stability_json(body, state.spin, reports, lyapunov, wander)},
+      {"stability.json", io::stability_json(body, analysis)},
       {"comparison.json", io::comparison_json(c)},
       {"comparison.csv", io::comparison_csv(c)},
       {"trajectories.csv", all_trajectories_csv(c)},
@@ -365,46 +390,72 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram));
 
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop report</title><style>" << kStyle
-       << "</style>\n";
+  const std::string title = fmt::format("{}: {}", source.empty() ? "The built-in example, a wooden toy top" : source,
+                                        body_words(body));
+  html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop: " << html_escape(title)
+       << "</title><style>" << kStyle << "</style>\n";
   // Classic scripts beside the page (file:// allows no module imports and no fetch()).
   if (!assets.empty()) html << "<script src='report-data.js'></script>\n<script src='heavytop-report.js' defer></script>\n";
-  html << "</head><body>\n<h1>heavytop: the heavy top, its models and the truth</h1>\n";
+  html << "</head><body>\n<h1>" << html_escape(title) << "</h1>\n";
+  // The answer: what a person asks first.
+  // The numbers behind the words, to full precision, for scripts and the browser test.
+  const auto exact = [](const std::optional<double>& x) { return x ? fmt::format("{:.17g}", *x) : std::string("null"); };
+  html << fmt::format("<section id='answer' data-verdict='{}' data-proven='{}' data-falls-at='{}' data-lifetime='{}' "
+                      "data-max-tilt='{}' data-min-spin='{}'>\n<h2>Does it stay up?</h2>\n"
+                      "<p class='answer {}'><b>{}</b> {}</p>\n",
+                      name(answer.verdict), answer.proven, exact(answer.falls_at), exact(answer.lifetime),
+                      exact(answer.max_tilt), exact(answer.min_spin),
+                      answer.verdict == AnswerVerdict::Falls ? "falls" : answer.proven ? "up" : "unproven",
+                      html_escape(io::answer_headline(answer)),
+                      html_escape(io::answer_reason(answer) + " " + io::answer_advice(answer)));
   html << fmt::format(
       "<p>Body: A = {:g}, B = {:g}, C = {:g} kg&nbsp;m&sup2;, m = {:g} kg, g = {:g} m/s&sup2;, R = {:g} m "
-      "(m g R = {:g} N&nbsp;m, {}). Spin w0 = {:g} rad/s ({:.0f} rpm); start theta0 = {:g}, phi0 = {:g} rad, "
-      "rates {:g}, {:g} rad/s.</p>\n",
+      "(m g R = {:g} N&nbsp;m, {}). Spin {:g} rad/s ({:.0f} rpm); started {:.3g} degrees ({:.3g} rad) off vertical "
+      "(the paper's theta0 = {:g}, phi0 = {:g} rad, rates {:g}, {:g} rad/s).</p>\n",
       body.A, body.B, body.C, body.mass, body.gravity, body.length, body.mgR(),
       body.length > 0 ? "centre of mass above the pivot" : body.length < 0 ? "hanging" : "centre of mass at the pivot",
-      state.spin, state.spin * 30.0 / std::numbers::pi, state.theta0, state.phi0, state.theta_rate0, state.phi_rate0);
+      state.spin, state.spin * 30.0 / std::numbers::pi, answer.start_tilt * 180.0 / std::numbers::pi,
+      answer.start_tilt, state.theta0, state.phi0, state.theta_rate0, state.phi_rate0);
+  if (life && life_figure)
+    html << "<h3>How long does it stay up?</h3>\n<p>" << html_escape(io::lifetime_text(body, state, *life))
+         << "</p>\n"
+         << fmt::format("<figure><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "
+                        "<a href='{0}.svg'>SVG</a>; <a href='lifetime.json'>lifetime.json</a>: as <code>heavytop "
+                        "lifetime --format json</code>)</figcaption></figure>\n",
+                        life_figure->name, html_escape(life_figure->caption));
+  html << "</section>\n";
   html << view_html(c, equivalent_ellipsoid(body));
-  html << "<h2>Is it stable?</h2>\n<p><i>first-order</i> is the paper's model (4) and its condition (9); "
+  html << "<h2>The models: is it stable?</h2>\n<p><i>first-order</i> is the paper's model (4) and its condition (9); "
           "<i>body-fixed</i> its model (5), which the paper itself calls erroneous; <i>linearized</i> the exact "
-          "linearisation about the upright spin, the one to trust.</p>\n"
+          "linearisation about the upright spin, the one to trust. A model's <i>critical spin</i> is the slowest spin "
+          "at which it is stable.</p>\n"
        << table_html(reports);
   if (reports[0].verdict.stable != reports[2].verdict.stable)
     html << "<p class='note'>The paper's model (4) and the exact linearisation disagree at this spin (erratum E3).</p>\n";
   // The second question: the real body, beyond the linearisation (docs/lyapunov.md).
   const LyapunovVerdict& v = lyapunov.verdict;
   html << fmt::format(
-      "<p><b>The real body</b> (nonlinear, conservative) at this spin: Lyapunov <b>{}</b> ({}; certificate "
-      "<code>{}</code>). Energy index {}; proven stable for spins (rad/s): {}; superfast {}.{}{}</p>\n",
+      "<p><b>The real body</b> (nonlinear, conservative{}) at this spin: Lyapunov <b>{}</b> ({}; certificate "
+      "<code>{}</code>). Energy index {} (the number of negative stiffnesses: 0 is stable by energy alone); proven "
+      "stable for spins (rad/s): {}; superfast {}.{}{}</p>\n",
+      body.damping.conservative() ? "" : ", the damping left out of this verdict",
       name(v.verdict), html_escape(v.reason), name(v.certificate), v.energy_index,
       io::intervals_text(lyapunov.intervals),
       lyapunov.superfast ? fmt::format("from {:.6g} rad/s", *lyapunov.superfast) : std::string("at no spin"),
       v.certificate == LyapunovCertificate::CriticalQuartic
-          ? " At the boundary of (9) the linear models grow (a Jordan block), but the real symmetric top does not: "
-            "started &delta; off vertical its tilt stays below about &radic;(2&delta;) (erratum E2)."
+          ? " At the boundary of (9) the linear models grow (a Jordan block: a double frequency whose motion grows "
+            "like t), but the real symmetric top does not: started &delta; off vertical its tilt stays below about "
+            "&radic;(2&delta;) (erratum E2)."
           : "",
-      wander.max_tilt ? fmt::format(" From the given start the axis tilts at most {:.4g} rad ({}).", *wander.max_tilt,
-                                    wander.closed_form ? "closed form" : "integrated")
+      wander.max_tilt ? fmt::format(" From the given start the axis tilts at most {:.4g} rad ({:.3g} degrees; {}).",
+                                    *wander.max_tilt, *wander.max_tilt * 180.0 / std::numbers::pi,
+                                    wander.closed_form ? "closed form"
+                                                       : fmt::format("integrated over {:g} s", wander.horizon.value_or(0.0)))
                       : std::string());
-  if (life)
-    html << "<h2>How long does it stay up?</h2>\n<p>" << html_escape(io::lifetime_text(body, state, *life))
-         << "</p>\n<p>The figure <i>lifetime</i> below shows the spin and the tilt against time "
-            "(<a href='lifetime.json'>lifetime.json</a>: as <code>heavytop lifetime --format json</code>).</p>\n";
   html << "<h2>How does it move?</h2>\n<p>Every model from the same start over " << fmt::format("{:.4g}", horizon)
-       << " s, against the full nonlinear body (" << c.summary.steps << " integrator steps, relative energy drift "
+       << " s" << (answer.falls_at && !t_end ? " (up to the fall and a little after)" : "")
+       << (body.damping.conservative() ? "" : ", with the damping")
+       << ", against the full nonlinear body (" << c.summary.steps << " integrator steps, relative energy drift "
        << fmt::format("{:.1e}", c.summary.max_relative_energy_drift) << ").</p>\n"
        << comparison_html(c);
   html << plots_html(body);
@@ -432,7 +483,8 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
        << (assets.empty() ? "" : "<li><a href='report-data.js'>report-data.js</a>: what the interactive view draws "
                                  "(decimated for display, six digits), with the spin angle psi of the nonlinear body</li>")
        << "</ul>\n"
-          "<p><small>Made by heavytop. Units SI; angles as in SPEC.md section 2.</small></p>\n</body></html>\n";
+          "<p><small>Made by heavytop. Units SI (angles in rad unless degrees are named); the angles, keys and files are "
+          "those of heavytop's contract (docs/contract.md in its repository).</small></p>\n</body></html>\n";
   for (const auto& asset : assets)
     data.emplace_back(asset.name, std::string(reinterpret_cast<const char*>(asset.data), asset.size));
   data.emplace_back("report.html", html.str());  // last: the page appears when all it needs is there

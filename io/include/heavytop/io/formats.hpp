@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "heavytop/answer.hpp"
 #include "heavytop/compare.hpp"
 #include "heavytop/lifetime.hpp"
 #include "heavytop/fit_decay.hpp"
@@ -20,15 +21,28 @@ namespace heavytop::io {
 /// Stable spins for people (rad/s): "[1.2, 3.4), above 5.6", "from 5.6" (5.6 itself stable),
 /// "every spin", "every spin > 0" or "none"; brackets say whether an end is included.
 std::string intervals_text(const std::vector<SpinInterval>& intervals);
-/// `heavytop stability` with the real body's side (SPEC section 7): the JSON adds, beside
-/// "models", "lyapunov" {"verdict", "certificate", "energy_index", "stable_spin_intervals"
-/// (rad/s), "superfast_spin" (rad/s or null)} and "wander" {"max_tilt" (rad or null), "method"
-/// ("closed form" | "integrated"), "horizon" (s or null), and "note" when max_tilt is null};
-/// the text adds one line per question after the linear models' table, which is unchanged.
-std::string stability_json(const Body& body, double spin, const std::vector<ModelStability>& models,
-                           const LyapunovStability& lyapunov, const Wander& wander);
-std::string stability_text(const Body& body, double spin, const std::vector<ModelStability>& models,
-                           const LyapunovStability& lyapunov, const Wander& wander);
+/// `heavytop stability` (SPEC sections 5, 7, 14): the JSON is {"body", ["damping",] "spin",
+/// "answer" {"verdict", "proven", "reason", "max_tilt" (rad), "falls_at" (s), "horizon" (s),
+/// "min_spin" (rad/s), "lifetime" (s); null where absent}, "models", "lyapunov" {"verdict",
+/// "certificate", "energy_index", "stable_spin_intervals" (rad/s), "superfast_spin" (rad/s or
+/// null)}, "wander" {"max_tilt" (rad or null), "method" ("closed form" | "integrated"),
+/// "horizon" (s or null), and "note" when max_tilt is null}}; the text opens with the answer in
+/// words, then the details (the models' table, the real body's verdict) and a glossary.
+std::string stability_json(const Body& body, const TopAnalysis& analysis);
+std::string stability_text(const Body& body, const TopAnalysis& analysis);
+
+/// The answer (SPEC section 14) in words, for people: answer_headline() ("Stays up.", "Falls.",
+/// ...), answer_reason() (one sentence: the JSON's "reason"), and answer_text(), the
+/// paragraph every person-facing output opens with (headline, reason, and answer_advice(): what
+/// the spin must be, or the critical spin of a damped body).
+/// Spins in rad/s and rpm, angles in degrees and rad, times in s.
+std::string answer_headline(const Answer& answer);
+std::string answer_reason(const Answer& answer);
+std::string answer_advice(const Answer& answer);
+std::string answer_text(const Answer& answer);
+
+/// The glossary of the terms the details of `stability` use (text, one term a line).
+extern const char* const kStabilityGlossary;
 
 /// `heavytop lifetime --format json` (SPEC section 8): {"spin_decay": {"critical_spin",
 /// "time_to_critical"}, "fall": {"time", "spin", "max_tilt"}, "horizon"}.

@@ -30,12 +30,15 @@ struct ReportMap {
   std::vector<std::pair<std::string, StabilityMap>> heat_maps() const;
 };
 
-/// Writes the report for `body` and `state` into folder `dir` (created if needed), the motion
-/// over `t_end` (s; default natural_horizon()), and, if given, the heat maps of `map`. Throws
+/// Writes the report for `body` and `state` into folder `dir` (created if needed): the answer
+/// first (SPEC section 14, as `stability` gives it; for a damped body with its lifetime), then
+/// the 3D view, the models, the motion over `t_end` (s; default: up to the fall and a fifth
+/// more when the body falls, else natural_horizon()), and, if given, the heat maps of `map`.
+/// `source` (the configuration file, "" for the built-in example) is named in the title. Throws
 /// InvalidInput (key "map" or "slice", before anything is made: ReportMap::heat_maps()) for a
 /// map it cannot draw, InvalidInput (key "--output") if the folder cannot be made, io::Failure
 /// if a figure cannot be drawn.
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
-                  const std::optional<ReportMap>& map = std::nullopt);
+                  const std::optional<ReportMap>& map = std::nullopt, const std::string& source = "");
 
 }  // namespace heavytop::report

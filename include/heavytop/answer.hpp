@@ -1,0 +1,102 @@
+#pragma once
+/// \file
+/// The answer a person asks first (SPEC section 14): does the top stay up, and for how long?
+/// One verdict from the analyses that decide it: the Lyapunov verdict for the conservative
+/// body, the nonlinear motion from the given state when that verdict does not prove it, and the
+/// lifetime (SPEC section 8) for a damped body. The numbers only; io/ puts them into words.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/lifetime.hpp"
+#include "heavytop/lyapunov.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/stability.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// SPEC section 14's three answers.
+enum class AnswerVerdict {
+  StaysUp,            ///< "stays up": proven (the Lyapunov verdict is stable)
+  Falls,              ///< "falls": the computed nonlinear motion tilts past max_tilt
+  StaysUpForHorizon,  ///< "stays up for the horizon": it did not fall in the run, not proven
+};
+/// "stays up" | "falls" | "stays up for the horizon".
+std::string_view name(AnswerVerdict verdict);
+
+/// Why the answer is what it is (for the words; not part of the JSON).
+enum class AnswerCase {
+  ProvenStable,        ///< Lyapunov stable at the spin
+  FallsConservative,   ///< not proven stable, and the nonlinear run falls
+  BalancedUnstable,    ///< exactly upright and at rest transversely, but the upright is unstable
+  NotFallen,           ///< not proven stable and it did not fall in the run
+  FallsDamped,         ///< damped: the lifetime's run falls
+  OutlivesHorizon,     ///< damped: it did not fall within the lifetime's horizon
+};
+
+/// Settings of answer_question().
+struct AnswerOptions {
+  /// s, the conservative body's nonlinear run (finite, > 0): `stability --horizon`.
+  double horizon = 100.0;
+  /// rad, the tilt from the upward vertical past which the top has fallen (in (0, pi]).
+  double max_tilt = 1.0;
+  /// s, the damped body's run (lifetime()'s horizon); nullopt: lifetime()'s default.
+  std::optional<double> damped_horizon;
+  NonlinearOptions integrator;  ///< the nonlinear run's tolerances
+  /// True if every setting is in range; else false and "key: rule" in `why` (key "horizon" or
+  /// "max_tilt").
+  bool IsValid(std::string* why) const;
+};
+
+/// The answer (SPEC section 14's `answer` object, and what the words need).
+struct Answer {
+  AnswerVerdict verdict = AnswerVerdict::StaysUpForHorizon;
+  AnswerCase why = AnswerCase::NotFallen;
+  bool proven = false;  ///< true for a Lyapunov proof or a computed fall
+  double spin = 0.0;    ///< rad/s, the spin asked about (w0)
+  double start_tilt = 0.0;  ///< rad, the tilt at t = 0
+  /// rad, the largest tilt: the wander (SPEC 7) when proven stable, else the run's largest
+  /// tilt (at the fall, the threshold's crossing); nullopt when it could not be computed.
+  std::optional<double> max_tilt;
+  double fall_threshold = 1.0;      ///< rad, AnswerOptions::max_tilt
+  std::optional<double> falls_at;   ///< s, the first time the tilt passes fall_threshold
+  std::optional<double> fall_spin;  ///< rad/s, w.k at falls_at
+  double horizon = 0.0;             ///< s, the horizon of the run that decided (or would have)
+  /// rad/s, the smallest of the spins proven stable (Lyapunov), nullopt when none.
+  std::optional<double> min_spin;
+  /// true when every spin below min_spin is unstable (a symmetric top's sharp threshold C^2 w0^2
+  /// = 4 A m g R: "below it, it would fall"); false when below it stability is only unproven.
+  bool falls_below_min_spin = false;
+  std::optional<double> lifetime;   ///< s, a damped body's fall time (= falls_at), else nullopt
+  bool damped = false;              ///< the damping (SPEC 6) was taken into account
+  bool hanging = false;             ///< the centre of mass is below the pivot (length < 0)
+  /// rad/s, for a damped body: the critical spin its spin decays to (lifetime's), nullopt else.
+  std::optional<double> critical_spin;
+};
+
+/// The answer for `body` started in `initial`, from the Lyapunov analysis at the spin and the
+/// wander (what `stability` computes, passed in so it is computed once) and, where they do not
+/// decide, a nonlinear run: tilt_extremes over options.horizon for the conservative body,
+/// lifetime() for a damped one. Throws InvalidInput for bad options; never throws for a failed
+/// run (the answer is then "stays up for the horizon" with max_tilt empty).
+Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
+                       const Wander& wander, const AnswerOptions& options = {});
+
+/// Everything `heavytop stability` says, computed once for the command line, the report and
+/// Python alike: the linear models, the Lyapunov verdict, the wander and the answer.
+struct TopAnalysis {
+  double spin = 0.0;                     ///< rad/s, w0
+  std::vector<ModelStability> models;    ///< analyse_stability(body, spin)
+  LyapunovStability lyapunov;            ///< analyse_lyapunov(body, spin)
+  Wander wander;                         ///< axis_wander(body, initial, options.horizon)
+  Answer answer;                         ///< answer_question(...)
+};
+/// The analyses of `body` at the spin of `initial` and the answer; throws InvalidInput for a
+/// bad body, state or options.
+TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options = {});
+
+}  // namespace heavytop

@@ -1,0 +1,130 @@
+// The answer (SPEC section 14) in plain words: the first thing `stability`, the report and
+// Python's repr say. Spins in rad/s and rpm, angles in degrees and rad, times in seconds.
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "heavytop/io/formats.hpp"
+#include "heavytop/units.hpp"
+
+namespace heavytop::io {
+namespace {
+
+std::string spin_words(double w) {
+  const double rpm = rpm_from_rad_per_s(w);
+  return fmt::format("{:.4g} rad/s ({} rpm)", w, std::abs(rpm) >= 100.0 ? fmt::format("{:.0f}", rpm)
+                                                                          : fmt::format("{:.3g}", rpm));
+}
+
+std::string angle_words(double rad) {
+  return fmt::format("{:.3g} degrees ({:.3g} rad)", rad * 180.0 / std::numbers::pi, rad);
+}
+
+/// rad, a start tilt past which the words describe the motion rather than the upright spin.
+constexpr double kFarFromVertical = 0.5;
+
+std::string time_words(double s) { return fmt::format("{:.4g} s", s); }
+
+/// "this hanging body" with the centre of mass below the pivot, else "this top".
+std::string noun(const Answer& a) { return a.hanging ? "this hanging body" : "this top"; }
+
+std::string start_words(const Answer& a) {
+  return a.start_tilt == 0.0 ? "started upright" : fmt::format("started {} off vertical", angle_words(a.start_tilt));
+}
+
+}  // namespace
+
+std::string answer_advice(const Answer& a) {
+  if (a.damped) {
+    if (a.critical_spin && *a.critical_spin > 0.0)
+      return fmt::format("Without damping it needs at least {} to stay up (the critical spin).",
+                         spin_words(*a.critical_spin));
+    if (a.critical_spin) return "Without damping it would stay up at every spin.";
+    return "No spin holds it up, even without damping.";
+  }
+  if (!a.min_spin) return "No spin is proven to hold it up.";
+  if (*a.min_spin == 0.0) return a.hanging ? "It hangs stably at every spin, even at rest." : "It is stable at every spin.";
+  if (a.verdict == AnswerVerdict::StaysUp)
+    return a.falls_below_min_spin ? fmt::format("Below {} it would fall.", spin_words(*a.min_spin))
+                                  : fmt::format("Below {} its stability is not proven.", spin_words(*a.min_spin));
+  return a.falls_below_min_spin ? fmt::format("It needs at least {} to stay up.", spin_words(*a.min_spin))
+                                : fmt::format("From {} up it is proven stable.", spin_words(*a.min_spin));
+}
+
+std::string answer_headline(const Answer& a) {
+  switch (a.why) {
+    case AnswerCase::ProvenStable: return a.hanging ? "Hangs steadily." : "Stays up.";
+    case AnswerCase::FallsConservative: return "Falls.";
+    case AnswerCase::FallsDamped: return fmt::format("Falls after {}.", time_words(a.falls_at.value_or(0.0)));
+    case AnswerCase::BalancedUnstable:
+      return fmt::format("Stays up for the {} computed, but only because it starts exactly upright.",
+                         time_words(a.horizon));
+    case AnswerCase::NotFallen:
+    case AnswerCase::OutlivesHorizon: break;
+  }
+  return fmt::format("Stays up for the {} computed (not proven beyond).", time_words(a.horizon));
+}
+
+std::string answer_reason(const Answer& a) {
+  const std::string body = noun(a);
+  const std::string fall = fmt::format("{} from vertical", angle_words(a.fall_threshold));
+  switch (a.why) {
+    case AnswerCase::ProvenStable: {
+      // Started far from the vertical (a classroom gyroscope, axle level), the proof is about the
+      // upright spin; what the person sees is this motion's own largest tilt.
+      if (a.start_tilt > kFarFromVertical && a.max_tilt)
+        return fmt::format("Spinning at {} and {}, {} keeps its axis within {} of vertical; its upright spin is "
+                           "proven stable.",
+                           spin_words(a.spin), start_words(a), body, angle_words(*a.max_tilt));
+      std::string s = fmt::format("Spinning at {} {} is proven stable", spin_words(a.spin), body);
+      if (a.max_tilt) s += fmt::format("; its axis stays within {} of vertical", angle_words(*a.max_tilt));
+      return s + ".";
+    }
+    case AnswerCase::FallsConservative:
+      return fmt::format("Spinning at {}, {}, {} tilts past {} at t = {}.", spin_words(a.spin), start_words(a), body,
+                         fall, time_words(a.falls_at.value_or(0.0)));
+    case AnswerCase::BalancedUnstable:
+      return fmt::format("Spinning at {} exactly upright, {} stays balanced in the computation, but its upright "
+                         "spin is unstable: the slightest disturbance makes it fall.",
+                         spin_words(a.spin), body);
+    case AnswerCase::NotFallen: {
+      std::string s = fmt::format("Spinning at {}, {}, {} ", spin_words(a.spin), start_words(a), body);
+      s += a.max_tilt ? fmt::format("stayed within {} of vertical over the {} computed", angle_words(*a.max_tilt),
+                                    time_words(a.horizon))
+                      : fmt::format("could not be followed over the {} asked", time_words(a.horizon));
+      return s + ", but its stability is not proven, so it may still fall later.";
+    }
+    case AnswerCase::FallsDamped:
+      return fmt::format("Damping {} its spin of {}; at t = {} its axis passes {}, spinning at {}.",
+                         a.spin != 0.0 ? "slows" : "acts on", spin_words(a.spin),
+                         time_words(a.falls_at.value_or(0.0)), fall, spin_words(a.fall_spin.value_or(0.0)));
+    case AnswerCase::OutlivesHorizon: break;
+  }
+  std::string s = fmt::format("With its damping, spinning at {}, {} did not tilt past {} within the {} computed",
+                              spin_words(a.spin), body, fall, time_words(a.horizon));
+  if (a.max_tilt) s += fmt::format(" (largest tilt {})", angle_words(*a.max_tilt));
+  return s + ".";
+}
+
+std::string answer_text(const Answer& a) {
+  return answer_headline(a) + " " + answer_reason(a) + " " + answer_advice(a);
+}
+
+const char* const kStabilityGlossary =
+    "Glossary\n"
+    "  tilt: the angle of the spin axis from the upward vertical; azimuth: the direction it leans to.\n"
+    "  first-order, body-fixed: the paper's approximate models (4) and (5); linearized: the exact "
+    "linearisation, the one to trust.\n"
+    "  critical spin: the slowest spin at which a model is stable (stable spins: all the spins where it is).\n"
+    "  Lyapunov stable: every motion started close enough to the upright spin stays close, in the real "
+    "(nonlinear) body, for ever.\n"
+    "  certificate: the argument that proves the verdict (energy-casimir: the energy at fixed momentum is a "
+    "minimum; chetaev: Chetaev's function for the symmetric top; critical-quartic: the quartic term at the "
+    "boundary; odd-index: one stiffness negative, a real growth; linear-instability: the linearisation grows).\n"
+    "  energy index: how many of the two stiffnesses s1, s2 are negative (0: stable by energy alone).\n"
+    "  Jordan block: a double eigenvalue whose motion grows like t (unstable in a linear model).\n"
+    "  growth rate: the largest real part of the eigenvalues (1/s); > 0 means the motion grows.\n";
+
+}  // namespace heavytop::io

@@ -1,0 +1,142 @@
+#include "heavytop/answer.hpp"
+
+#include <cmath>
+#include <exception>
+#include <numbers>
+
+#include "heavytop/frames.hpp"
+
+#include "detail/integration.hpp"
+
+namespace heavytop {
+namespace {
+
+detail::Violation first_violation(const AnswerOptions& o) {
+  if (!(std::isfinite(o.horizon) && o.horizon > 0.0)) return std::pair{"horizon", "must be a finite number > 0"};
+  if (!(o.max_tilt > 0.0 && o.max_tilt <= std::numbers::pi)) return std::pair{"max_tilt", "must be in (0, pi]"};
+  if (o.damped_horizon && !(std::isfinite(*o.damped_horizon) && *o.damped_horizon > 0.0))
+    return std::pair{"horizon", "must be a finite number > 0"};
+  return std::nullopt;
+}
+
+bool at_rest_upright(const InitialState& s) {
+  return s.theta0 == 0.0 && s.phi0 == 0.0 && s.theta_rate0 == 0.0 && s.phi_rate0 == 0.0;
+}
+
+/// The smallest spin proven stable, and whether every spin below it is unstable: proven for a
+/// symmetric top, whose threshold C^2 w0^2 = 4 A m g R is sharp (below it the linearisation
+/// grows at every spin); for A != B spins below may be stable without proof, so nothing is claimed.
+void spin_threshold(const Body& body, const LyapunovStability& lyapunov, Answer& a) {
+  if (lyapunov.intervals.empty()) return;
+  a.min_spin = lyapunov.intervals.front().lo;
+  if (*a.min_spin <= 0.0 || !is_symmetric(body) || !(body.mgR() > 0.0)) return;
+  // Just below the end (a root of the closed form, exact to rounding), where the verdict is
+  // no longer the boundary's.
+  const double below = *a.min_spin * (1.0 - 1e-6);
+  a.falls_below_min_spin = lyapunov_stability(body, below).verdict == LyapunovVerdictKind::Unstable;
+}
+
+}  // namespace
+
+std::string_view name(AnswerVerdict verdict) {
+  switch (verdict) {
+    case AnswerVerdict::StaysUp: return "stays up";
+    case AnswerVerdict::Falls: return "falls";
+    case AnswerVerdict::StaysUpForHorizon: break;
+  }
+  return "stays up for the horizon";
+}
+
+bool AnswerOptions::IsValid(std::string* why) const {
+  return detail::is_valid(first_violation(*this), why) && integrator.IsValid(why);
+}
+
+Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
+                       const Wander& wander, const AnswerOptions& options) {
+  detail::throw_if_invalid(first_violation(options));
+  validate(options.integrator);
+  Answer a;
+  a.spin = initial.spin;
+  a.start_tilt = tilt(initial.theta0, initial.phi0);
+  a.fall_threshold = options.max_tilt;
+  a.horizon = options.horizon;
+  a.hanging = body.length < 0.0;
+  a.damped = !body.damping.conservative();
+  spin_threshold(body, lyapunov, a);
+
+  if (a.damped) {  // SPEC 14: the lifetime (SPEC 8) decides
+    LifetimeOptions life_options;
+    life_options.horizon = options.damped_horizon;
+    life_options.max_tilt = options.max_tilt;
+    life_options.integrator = options.integrator;
+    try {
+      const Lifetime life = lifetime(body, initial, life_options);
+      a.horizon = life.horizon;
+      a.critical_spin = life.critical_spin;
+      a.max_tilt = life.largest_tilt;
+      if (life.fall_time) {
+        a.verdict = AnswerVerdict::Falls;
+        a.why = AnswerCase::FallsDamped;
+        a.proven = true;
+        a.falls_at = a.lifetime = life.fall_time;
+        a.fall_spin = life.fall_spin;
+      } else {
+        a.verdict = AnswerVerdict::StaysUpForHorizon;
+        a.why = AnswerCase::OutlivesHorizon;
+      }
+    } catch (const InvalidInput&) {
+      throw;
+    } catch (const std::exception&) {
+      a.verdict = AnswerVerdict::StaysUpForHorizon;  // the run failed: nothing is claimed
+      a.why = AnswerCase::OutlivesHorizon;
+      a.horizon = life_options.horizon.value_or(0.0);
+    }
+    return a;
+  }
+
+  if (lyapunov.verdict.verdict == LyapunovVerdictKind::Stable) {
+    a.verdict = AnswerVerdict::StaysUp;
+    a.why = AnswerCase::ProvenStable;
+    a.proven = true;
+    a.max_tilt = wander.max_tilt;
+    return a;
+  }
+  a.verdict = AnswerVerdict::StaysUpForHorizon;
+  if (at_rest_upright(initial)) {  // an exact permanent rotation: it never tilts, however unstable
+    a.why = lyapunov.verdict.verdict == LyapunovVerdictKind::Unstable ? AnswerCase::BalancedUnstable
+                                                                      : AnswerCase::NotFallen;
+    a.max_tilt = 0.0;
+    return a;
+  }
+  a.why = AnswerCase::NotFallen;
+  try {
+    const TiltExtremes run = tilt_extremes(body, initial, options.horizon, options.max_tilt, options.integrator);
+    a.max_tilt = run.max_tilt;
+    if (run.exceeded) {
+      a.verdict = AnswerVerdict::Falls;
+      a.why = AnswerCase::FallsConservative;
+      a.proven = true;
+      a.falls_at = run.t_end;
+      a.fall_spin = run.spin_at_end;
+    }
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (const std::exception&) {
+    a.max_tilt.reset();  // the run failed: not fallen as far as is known, nothing claimed
+  }
+  return a;
+}
+
+TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options) {
+  validate(initial);
+  detail::throw_if_invalid(first_violation(options));
+  TopAnalysis t;
+  t.spin = initial.spin;
+  t.models = analyse_stability(body, initial.spin);
+  t.lyapunov = analyse_lyapunov(body, initial.spin);
+  t.wander = axis_wander(body, initial, options.horizon, options.integrator);
+  t.answer = answer_question(body, initial, t.lyapunov, t.wander, options);
+  return t;
+}
+
+}  // namespace heavytop
