@@ -31,6 +31,10 @@ fi
 # npm: Debian's package, unless a node install (e.g. NodeSource's nodejs) already brings its own.
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 
+# `install-deps.sh --web`: the explorer page (web/, `heavytop explore`): Emscripten's em++, node,
+# and chromium for its browser test (scripts/build.sh --web); --tests takes them too.
+case "${1:-}" in --web | --tests) packages+=(emscripten nodejs chromium) ;; esac
+
 # bench/peers/ (run by hand, not in CI): `install-deps.sh --peers` adds the other libraries.
 [ "${1:-}" = "--peers" ] && packages+=(libgsl-dev python3-scipy libmujoco-dev)
 

@@ -55,8 +55,13 @@ void detail::fail_not_finite(double t) {
 bool batch_isa_supported(BatchIsa isa) {
   switch (isa) {
     case BatchIsa::Sse2: return true;  // the x86-64 baseline
+#if defined(__x86_64__) || defined(__i386__)
     case BatchIsa::Avx2: return __builtin_cpu_supports("avx2");
     case BatchIsa::Avx512: return __builtin_cpu_supports("avx512f");
+#else  // WebAssembly (web/): the portable kernel only
+    case BatchIsa::Avx2: return false;
+    case BatchIsa::Avx512: return false;
+#endif
   }
   return false;
 }

@@ -9,7 +9,9 @@
 #include "heavytop/frames.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <exception>
 #include <atomic>
@@ -30,8 +32,15 @@ constexpr std::string_view kKeys[] = {"A", "B", "C", "mass", "gravity", "length"
 
 double parse_number(std::string_view text, const char* what) {
   double value = 0.0;
+#if defined(__EMSCRIPTEN__)  // its libc++ has no floating-point from_chars (the core in WebAssembly, web/)
+  const std::string copy(text);
+  char* stop = nullptr;
+  value = copy.empty() || std::isspace(static_cast<unsigned char>(copy[0])) ? NAN : std::strtod(copy.c_str(), &stop);
+  if (stop != copy.c_str() + copy.size() || !std::isfinite(value))
+#else
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+#endif
     throw InvalidInput("vary", fmt::format("{} '{}' must be a finite number", what, text));
   return value;
 }
@@ -296,8 +305,12 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
   };
   const std::size_t threads = std::min<std::size_t>(cores, (out.size() + kBlock - 1) / kBlock);
   {
+#if defined(__EMSCRIPTEN__)  // no threads in the page (web/): one worker
+    (void)threads;
+#else
     std::vector<std::jthread> pool;
     for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+#endif
     work();
   }
   if (failure) std::rethrow_exception(failure);

@@ -1,0 +1,246 @@
+// The explorer page in a real browser (Debian's chromium, headless, driven by puppeteer-core):
+//   node browser_explore.cjs CHROMIUM HEAVYTOP PAGE.html WORK_DIR
+// Loads PAGE.html (as `heavytop explore` wrote it) from file:// and checks SPEC section 15:
+// window.heavytop.stability equals `heavytop stability --format json` (1e-12 relative; the
+// integrated quantities, wander and answer, 1e-6) for seeded random bodies (symmetric and not,
+// hanging, damped, spins in rpm), simulate equals the CSV (1e-9), bad input throws the command
+// line's one-line message, no request leaves the page's folder, no console error, and typing a
+// spin changes the verdict shown. Then the page's benchmarks (medians, the browser's clock).
+// Exit 0 when all pass.
+const puppeteer = require("puppeteer-core");
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+const { spawnSync } = require("child_process");
+
+const [chromium, heavytop, pageFile, work] = process.argv.slice(2);
+let failures = 0;
+function check(what, ok, detail = "") {
+  console.log(`${ok ? "ok  " : "FAIL"} ${what}${detail ? ": " + detail : ""}`);
+  if (!ok) failures++;
+  return ok;
+}
+
+// The command line on the same TOML text, in WORK_DIR under the name the page's core uses.
+function cli(toml, args) {
+  fs.writeFileSync(path.join(work, "config.toml"), toml);
+  const r = spawnSync(heavytop, [args[0], "--config", "config.toml", ...args.slice(1)], { cwd: work, encoding: "utf8",
+                                                                                       maxBuffer: 1 << 28 });
+  return { status: r.status, stdout: r.stdout, stderr: r.stderr.trim() };
+}
+
+// Deterministic random numbers (mulberry32).
+function rng(seed) {
+  return () => {
+    seed |= 0; seed = (seed + 0x6d2b79f5) | 0;
+    let t = Math.imul(seed ^ (seed >>> 15), 1 | seed);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+function bodies(count) {
+  const r = rng(20261202), list = [];
+  const between = (a, b) => a + (b - a) * r();
+  for (let i = 0; i < count; i++) {
+    const A = between(1e-5, 1e-3);
+    const symmetric = i % 3 !== 2;
+    const B = symmetric ? A : A * between(0.8, 1.25);
+    const C = Math.min(A + B, Math.max(Math.abs(A - B), A)) * between(0.2, 0.95) + Math.abs(A - B);
+    const c = { body: { A, B, C, mass: between(0.02, 2), length: between(0.005, 0.1) * (i % 5 === 1 ? -1 : 1) },
+                motion: { theta0: between(0.001, 0.2) } };
+    if (i % 4 === 0) c.body.gravity = between(1, 20);
+    const wc = Math.sqrt(4 * A * c.body.mass * (c.body.gravity || 9.81) * Math.abs(c.body.length)) / C;
+    const spin = wc * between(0.3, 3);
+    if (i % 6 === 5) c.motion.spin_rpm = (spin * 60) / (2 * Math.PI); else c.motion.spin = spin;
+    if (i % 4 === 3) c.damping = { transverse: C * between(0, 0.05), axial: C * between(0.01, 0.1), friction: i % 8 === 7 ? C * between(0.1, 1) : 0 };
+    if (i % 7 === 6) c.motion.phi_rate0 = between(-1, 1);
+    list.push(c);
+  }
+  return list;
+}
+
+// Numbers equal to `tol` relative (of the larger, or of `scale` for entries of one array such
+// as eigenvalues, whose small parts are rounding noise of the large ones); the rest equal.
+// Integrated quantities (wander, answer) to 1e-6, but a falling body's largest tilt (chaotic)
+// only has to pass the fall's tilt (1 rad) in both, and a message holding an integrated time
+// (the step limit reached at t = ...) is compared with its numbers to 1e-4.
+function compare(a, b, where, tol, scale, out) {
+  const integrated = /^\.(wander|answer|lifetime)/.test(where);
+  const t = integrated ? Math.max(tol, 1e-6) : tol;
+  if (integrated && /max_tilt$/.test(where) && a > 1 && b > 1) return out;
+  if (integrated && typeof a === "string" && typeof b === "string") {
+    const numbers = (s) => (s.match(/-?\d+(\.\d+)?(e[-+]?\d+)?/g) || []).map(Number);
+    const [na, nb] = [numbers(a), numbers(b)];
+    const same = a.replace(/-?\d+(\.\d+)?(e[-+]?\d+)?/g, "#") === b.replace(/-?\d+(\.\d+)?(e[-+]?\d+)?/g, "#") &&
+                 na.every((x, i) => Math.abs(x - nb[i]) <= 1e-4 * Math.max(Math.abs(x), Math.abs(nb[i])));
+    if (!same) out.push(`${where}: ${JSON.stringify(a)} != ${JSON.stringify(b)}`);
+    return out;
+  }
+  if (typeof a === "number" && typeof b === "number") {
+    const s = Math.max(Math.abs(a), Math.abs(b), scale || 0);
+    if (!(Math.abs(a - b) <= t * s)) out.push(`${where}: ${a} != ${b}`);
+  } else if (Array.isArray(a) && Array.isArray(b)) {
+    if (a.length !== b.length) return out.push(`${where}: ${a.length} entries != ${b.length}`);
+    const flat = a.flat(2).filter((x) => typeof x === "number");
+    const sc = /eigenvalues/.test(where) ? Math.max(0, ...flat.map(Math.abs)) : scale;
+    a.forEach((x, i) => compare(x, b[i], `${where}[${i}]`, tol, sc, out));
+  } else if (a && b && typeof a === "object" && typeof b === "object") {
+    const keys = new Set([...Object.keys(a), ...Object.keys(b)]);
+    // A model's growth rate (the eigenvalues' largest real part) is 0 up to their rounding.
+    const eig = Array.isArray(a.eigenvalues) ? Math.max(0, ...a.eigenvalues.flat(2).map(Math.abs)) : 0;
+    for (const k of keys) {
+      if (!(k in a) || !(k in b)) { out.push(`${where}.${k}: only in ${k in a ? "the page" : "the command line"}`); continue; }
+      compare(a[k], b[k], `${where}.${k}`, tol, k === "growth_rate" ? eig : scale, out);
+    }
+  } else if (a !== b) out.push(`${where}: ${JSON.stringify(a)} != ${JSON.stringify(b)}`);
+  return out;
+}
+
+function parseCsv(text) {
+  const lines = text.trim().split("\n");
+  return { columns: lines[0].split(","), rows: lines.slice(1).map((l) => l.split(",").map(Number)) };
+}
+function compareTrajectory(page, native, tol) {
+  const out = [];
+  if (page.columns.join() !== native.columns.join()) return [`columns ${page.columns} != ${native.columns}`];
+  if (page.rows.length !== native.rows.length) return [`${page.rows.length} rows != ${native.rows.length}`];
+  page.columns.forEach((name, j) => {
+    // A conserved quantity's drift is relative already and rounding-sized: to 1e-9 absolute.
+    const scale = /_drift$/.test(name) ? 1 : Math.max(...native.rows.map((r) => Math.abs(r[j])));
+    let worst = 0;
+    page.rows.forEach((r, i) => { worst = Math.max(worst, Math.abs(r[j] - native.rows[i][j]) / (scale || 1)); });
+    if (!(worst <= tol)) out.push(`${name}: off by ${worst.toExponential(2)} of its scale`);
+  });
+  return out;
+}
+
+(async () => {
+  const folder = path.dirname(path.resolve(pageFile));
+  const browser = await puppeteer.launch({
+    executablePath: chromium, headless: true,
+    args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+           "--disable-component-update", "--disable-sync", "--disable-extensions",
+           `--user-data-dir=${fs.mkdtempSync(path.join(os.tmpdir(), "heavytop-chromium-"))}`],
+    defaultViewport: { width: 1280, height: 1000 },
+  });
+  const page = await browser.newPage();
+  const foreign = [], errors = [];
+  await page.setRequestInterception(true);
+  page.on("request", (req) => {
+    const url = req.url();
+    const local = url.startsWith("file://") && decodeURIComponent(new URL(url).pathname).startsWith(folder + path.sep);
+    if (local || url.startsWith("data:")) req.continue();
+    else { foreign.push(url); req.abort(); }
+  });
+  page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+  page.on("pageerror", (err) => errors.push(String(err)));
+
+  const t0 = Date.now();
+  await page.goto("file://" + path.resolve(pageFile), { waitUntil: "load" });
+  await page.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 30000 });
+  check("the page loads and answers", true, `${Date.now() - t0} ms`);
+  const v = spawnSync(heavytop, ["--version"], { encoding: "utf8" });
+  const pageVersion = await page.evaluate(() => heavytop.version);
+  if (v.status === 0) check("heavytop.version is `heavytop --version`", pageVersion === v.stdout.trim(), pageVersion);
+  else check("heavytop.version is `heavytop VERSION` (this heavytop has no --version yet)", /^heavytop \d+\.\d+\.\d+$/.test(pageVersion), pageVersion);
+  check("heavytop has stability, simulate and version",
+        (await page.evaluate(() => Object.keys(window.heavytop).sort().join())) === "simulate,stability,version");
+
+  // ---- stability and simulate against the command line ----
+  const list = bodies(24);
+  // A body from its parts (SPEC section 10): [[body.part]] from an array of objects.
+  list.push({ body: { part: [{ shape: "cone", radius: 0.02, height: 0.02, density: 700 },
+                             { shape: "cylinder", radius: 0.003, height: 0.05, z0: 0.0, density: 7800 }] },
+              motion: { spin: 300, theta0: 0.05 } });
+  let worstKinds = { hanging: 0, damped: 0, asymmetric: 0, rpm: 0, parts: 0 };
+  for (const [i, cfg] of list.entries()) {
+    const toml = await page.evaluate((c) => heavytopExplorer.toml(c), cfg);
+    const got = await page.evaluate((c) => { try { return heavytop.stability(c); } catch (e) { return { error: e.message }; } }, cfg);
+    const native = cli(toml, ["stability", "--format", "json"]);
+    const kind = [cfg.body.part && "parts", cfg.body.length < 0 && "hanging", cfg.damping && "damped", cfg.body.A !== cfg.body.B && "asymmetric",
+                  cfg.motion.spin_rpm !== undefined && "rpm"].filter(Boolean);
+    kind.forEach((k) => worstKinds[k]++);
+    if (native.status !== 0) {
+      check(`body ${i} (${kind.join(", ") || "symmetric"}): the command line's error equals the page's`, got.error === native.stderr,
+            `${got.error} | ${native.stderr}`);
+      continue;
+    }
+    const diff = got.error ? [got.error] : compare(got, JSON.parse(native.stdout), "", 1e-12, 0, []);
+    check(`body ${i} (${kind.join(", ") || "symmetric"}): stability equals the command line's`, diff.length === 0, diff.slice(0, 4).join("; "));
+    if (i % 2 === 0 || cfg.damping) {
+      for (const model of i % 4 === 0 ? ["nonlinear", "linearized"] : ["nonlinear"]) {
+        const opts = { model, t_end: 3, samples: 301 };
+        const run = await page.evaluate((c, o) => { try { return heavytop.simulate(c, o); } catch (e) { return { error: e.message }; } }, cfg, opts);
+        const csv = cli(toml, ["simulate", "--model", model, "--t-end", "3", "--samples", "301", "--format", "csv"]);
+        const d = run.error || csv.status !== 0 ? [run.error || csv.stderr] : compareTrajectory(run, parseCsv(csv.stdout), 1e-9);
+        check(`body ${i}: simulate ${model} equals the CSV`, d.length === 0, d.slice(0, 3).join("; "));
+      }
+    }
+  }
+  check("the bodies include hanging, damped, asymmetric ones, spins in rpm and parts",
+        Object.values(worstKinds).every((n) => n > 0), JSON.stringify(worstKinds));
+
+  // ---- bad input: the command line's one-line message ----
+  const toy = { body: { A: 4.35e-5, B: 4.35e-5, C: 1.2e-5, mass: 0.06, length: 0.025 }, motion: { spin: 200, theta0: 0.05 } };
+  const bad = [
+    [{ ...toy, body: { ...toy.body, mass: -1 } }, null],
+    [{ ...toy, body: { ...toy.body, A: undefined } }, null],
+    [{ ...toy, body: { ...toy.body, colour: 3 } }, null],
+    [{ ...toy, motion: { spin: "fast" } }, null],
+    [{ ...toy, motion: { spin: 1, spin_rpm: 2 } }, null],
+    [{ ...toy, damping: { axial: -1 } }, null],
+    [{ ...toy, shape: { x: 1 } }, null],
+    [{ ...toy, body: { ...toy.body, B: 1 } }, null],
+    [{ ...toy, body: { part: [{ shape: "mesh", file: "top.stl", density: 700 }] } }, null],
+    [{ ...toy, body: { part: [{ shape: "cone", radius: 0.02, height: 0.02 }] } }, null],
+    [toy, { model: "nonlinear", t_end: -1, samples: 11 }],
+    [toy, { model: "nope", t_end: 1, samples: 11 }],
+    [toy, { model: "nonlinear", t_end: 1, samples: 1 }],
+    [toy, { model: "lagrange-exact", t_end: 1, samples: 1.5 }],
+  ];
+  for (const [cfg, sim] of bad) {
+    const toml = await page.evaluate((c) => heavytopExplorer.toml(c), cfg);
+    const args = sim ? ["simulate", "--model", sim.model, "--t-end", String(sim.t_end), "--samples", String(sim.samples), "--format", "csv"]
+                     : ["stability", "--format", "json"];
+    const native = cli(toml, args);
+    const thrown = await page.evaluate((c, s) => {
+      try { s ? heavytop.simulate(c, s) : heavytop.stability(c); return null; }
+      catch (e) { return { message: e.message, isError: e instanceof Error }; }
+    }, cfg, sim);
+    check(`bad input throws the command line's message (${native.stderr})`,
+          native.status === 2 && thrown && thrown.isError && thrown.message === native.stderr,
+          thrown ? thrown.message : "nothing thrown");
+  }
+
+  // ---- a person typing a spin ----
+  const before = await page.$eval("#answer", (e) => e.textContent);
+  await page.click("#spin", { clickCount: 3 });
+  await page.keyboard.press("Backspace");
+  await page.type("#spin", "50");
+  await new Promise((r) => setTimeout(r, 500));
+  const after = await page.$eval("#answer", (e) => e.textContent);
+  check("typing a spin changes the verdict shown", before !== after && /unstable|falls/.test(after + (await page.$eval("#models", (e) => e.textContent))),
+        `${before} -> ${after}`);
+  const mapInfo = await page.$eval("#map-info", (e) => e.textContent);
+  check("the stability map is drawn", /in \d+ ms/.test(mapInfo), mapInfo);
+  // A click on the map shows that point's motion (the inputs move to it).
+  const spinBefore = await page.$eval("#spin", (e) => e.value);
+  const box = await (await page.$("#map")).boundingBox();
+  await page.mouse.click(box.x + box.width * 0.8, box.y + box.height * 0.5);
+  await new Promise((r) => setTimeout(r, 300));
+  const spinAfter = await page.$eval("#spin", (e) => e.value);
+  check("clicking the map shows that point's motion", spinAfter !== spinBefore &&
+        /computed in/.test(await page.$eval("#motion-info", (e) => e.textContent)), `spin ${spinBefore} -> ${spinAfter}`);
+  await page.screenshot({ path: path.join(work, "explore.png"), fullPage: true });
+
+  // ---- benchmarks ----
+  const bench = await page.evaluate(() => heavytopExplorer.benchmark());
+  bench.page_bytes = fs.statSync(pageFile).size;
+  console.log("benchmark " + JSON.stringify(bench));
+  fs.writeFileSync(path.join(work, "benchmark.json"), JSON.stringify(bench, null, 1));
+
+  check("no request leaves the page's folder", foreign.length === 0, foreign.join(" "));
+  check("no console error", errors.length === 0, errors.join(" | "));
+  await browser.close();
+  process.exit(failures ? 1 : 0);
+})().catch((err) => { console.log("FAIL", err.stack || err); process.exit(1); });

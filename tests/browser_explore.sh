@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The explorer page (SPEC section 15) in a real browser (browser_explore.cjs: headless chromium,
+# puppeteer-core from report/web's npm packages), as `heavytop explore` writes it; and the
+# command without the page (exit 2, saying how to build it). The page's benchmarks are written
+# to $ARTEFACTS/explore-benchmark.json, its screenshot to $ARTEFACTS/explore.png.
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/harness.sh"
+: "${CHROMIUM:?}" "${NODE:?}" "${NODE_MODULES:?}" "${ARTEFACTS:?}"
+mkdir -p "$ARTEFACTS" page cli
+
+"$H" explore --output page/explore.html
+check "heavytop explore writes the page" test $? -eq 0 -a -s page/explore.html
+grep -q 'HEAVYTOP_INITIAL = {"body": {"A": 4.35e-05' page/explore.html
+check "the page starts at the built-in toy top" test $? -eq 0
+"$H" explore --mass 0.07 --spin-rpm 3000 --output page/other.html
+grep -q '"mass": 0.07' page/other.html
+check "the page starts at the body given" test $? -eq 0
+"$H" explore > /dev/null 2> err.txt
+check "explore without --output: exit 2" test $? -eq 2 -a "$(wc -l < err.txt)" -eq 1
+
+# A copy of heavytop with no page beside it says how to build it.
+mkdir -p bare && cp "$H" bare/heavytop
+bare/heavytop explore --output x.html 2> err.txt
+status=$?
+check "explore without the page: exit 2" test $status -eq 2
+check "explore without the page: says how to build it" grep -q "scripts/build.sh --web" err.txt
+
+NODE_PATH="$NODE_MODULES" "$NODE" "$here/browser_explore.cjs" "$CHROMIUM" "$H" page/explore.html "$PWD/cli"
+check "in the browser" test $? -eq 0
+cp cli/benchmark.json "$ARTEFACTS/explore-benchmark.json" 2>/dev/null
+cp cli/explore.png "$ARTEFACTS/explore.png" 2>/dev/null
+finish

@@ -1,0 +1,219 @@
+// The core in WebAssembly (SPEC section 15): what the page's window.heavytop calls.
+//
+// No second front end: each call runs the command line's own command (cli/stability_command.cpp,
+// simulate_command.cpp, lifetime_command.cpp, with cli/common.cpp's Inputs and error handling)
+// on a configuration file that the page writes into Emscripten's in-memory file system, and
+// returns what the command wrote to --output. So the page's JSON is io/'s serialiser's, its
+// validation and its one-line messages are the command line's, byte for byte.
+//
+// Built by web/Makefile (Emscripten, embind) from the same sources as the native library.
+// Compiled natively (the CMake target heavytop_web_bench) it is instead a benchmark of the
+// same calls in one process, the native side of the page's figures (web/README.md).
+#if defined(__EMSCRIPTEN__)
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <functional>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "heavytop/io/config.hpp"
+#include "heavytop/sweep.hpp"
+#include "heavytop/version.hpp"
+
+namespace {
+
+using namespace heavytop;
+using Make = std::function<cli::Action(CLI::App&)>;
+
+// The configuration's name in the in-memory file system (the current folder, "/"), as a
+// message that names the file shows it: the browser test runs the command line on a file of
+// this name in its current folder, so that the two messages are the same.
+constexpr const char* kConfig = "config.toml";
+// --output: a file under /dev/, which io::OutputStream writes directly (as it does a device or
+// a pipe) rather than through a temporary, a lock and a rename beside it.
+#if defined(__EMSCRIPTEN__)
+constexpr const char* kOutput = "/dev/heavytop-output";
+#else
+constexpr const char* kOutput = "/dev/shm/heavytop-web-bench-output";
+#endif
+
+struct Result {
+  int status = 0;       // the command line's exit status
+  std::string output;   // what it wrote to --output (status 0)
+  std::string message;  // what it wrote on stderr: the one-line error, or warnings
+};
+
+// The whole file in one read (a stream's rdbuf() copies it a character at a time).
+std::string slurp(const char* path) {
+  std::string text;
+  if (std::FILE* f = std::fopen(path, "rb")) {
+    std::fseek(f, 0, SEEK_END);
+    text.resize(static_cast<std::size_t>(std::max(0L, std::ftell(f))));
+    std::fseek(f, 0, SEEK_SET);
+    text.resize(std::fread(text.data(), 1, text.size(), f));
+    std::fclose(f);
+  }
+  return text;
+}
+
+// `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it.
+Result run(const char* command, Make make, const std::string& config, std::vector<std::string> args) {
+  {
+    std::ofstream out(kConfig, std::ios::binary | std::ios::trunc);
+    out << config;
+  }
+  std::ofstream(kOutput, std::ios::binary | std::ios::trunc).close();
+  std::vector<std::string> words = {"heavytop", command, "--config", kConfig};
+  words.insert(words.end(), args.begin(), args.end());
+  words.insert(words.end(), {"--output", kOutput});
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+
+  CLI::App app{"heavytop"};
+  app.require_subcommand(0, 1);
+  cli::Action action = make(app);
+  std::ostringstream err;
+  std::streambuf* old = std::cerr.rdbuf(err.rdbuf());
+  Result r;
+  r.status = cli::run_reporting_errors(app, [&] {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    action();
+    return 0;
+  });
+  std::cerr.rdbuf(old);
+  r.message = err.str();
+  while (!r.message.empty() && r.message.back() == '\n') r.message.pop_back();
+  if (r.status == 0) r.output = slurp(kOutput);
+  return r;
+}
+
+Result map_verdicts(std::vector<unsigned char>& bytes, const std::string& config, const std::string& key_x, double x0, double x1,
+                              int nx, const std::string& key_y, double y0, double y1, int ny) {
+  bytes.clear();
+  const auto make = [&](CLI::App& app) -> cli::Action {
+    auto* cmd = app.add_subcommand("sweep", "");
+    auto inputs = std::make_shared<cli::Inputs>(*cmd, std::vector<std::string>{"csv"});
+    return [&, inputs] {
+      inputs->resolve();
+      if (nx < 1 || ny < 1) throw InvalidInput("vary", "COUNT must be >= 1");
+      const std::vector<SweepAxis> axes = {{key_x, x0, x1, static_cast<std::size_t>(nx)},
+                                           {key_y, y0, y1, static_cast<std::size_t>(ny)}};
+      SweepOptions options;
+      options.threads = 1;
+      validate_sweep(inputs->body(), inputs->state(), axes, options);
+      const auto verdicts = sweep_verdicts(inputs->body(), inputs->state(), axes, options, 0, grid_size(axes));
+      bytes.resize(verdicts.size());
+      for (std::size_t i = 0; i < verdicts.size(); ++i)
+        bytes[i] = static_cast<unsigned char>(verdicts[i].linear[0] | verdicts[i].linear[1] << 1 |
+                                              verdicts[i].linear[2] << 2 | verdicts[i].lyapunov << 3);
+      cli::write_output(inputs->output(), "");
+    };
+  };
+  return run("sweep", make, config, {});
+}
+
+#if defined(__EMSCRIPTEN__)
+std::string version() { return std::string("heavytop ") + std::string(kVersion); }
+
+// The output as a view of its bytes (UTF-8), alive until the next call: the page decodes it
+// with TextDecoder, far faster than embind's conversion of a long std::string.
+emscripten::val to_js(const Result& r) {
+  static std::string output;
+  output = r.output;
+  emscripten::val o = emscripten::val::object();
+  o.set("status", r.status);
+  o.set("output", emscripten::val(emscripten::typed_memory_view(output.size(), output.data())));
+  o.set("message", r.message);
+  return o;
+}
+
+emscripten::val stability(const std::string& config) {
+  return to_js(run("stability", cli::add_stability_command, config, {"--format", "json"}));
+}
+
+emscripten::val lifetime(const std::string& config) {
+  return to_js(run("lifetime", cli::add_lifetime_command, config, {"--format", "json"}));
+}
+
+// args: the simulate flags the page passes (--model, --t-end, --samples), as text.
+emscripten::val js_simulate(const std::string& config, const std::vector<std::string>& args) {
+  std::vector<std::string> all = args;
+  all.insert(all.end(), {"--format", "csv"});
+  return to_js(run("simulate", cli::add_simulate_command, config, all));
+}
+
+emscripten::val js_stability_map(const std::string& config, const std::string& key_x, double x0, double x1,
+                                 int nx, const std::string& key_y, double y0, double y1, int ny) {
+  static std::vector<unsigned char> bytes;  // alive until the next call: the page copies the view
+  emscripten::val o = to_js(map_verdicts(bytes, config, key_x, x0, x1, nx, key_y, y0, y1, ny));
+  o.set("verdicts", emscripten::val(emscripten::typed_memory_view(bytes.size(), bytes.data())));
+  return o;
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(heavytop) {
+  // stderr is not a terminal here: the commands' progress bars (cli/common.hpp) stay off and do
+  // not read the clock at every step. Their messages reach std::cerr, which run() captures.
+  if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
+  emscripten::register_vector<std::string>("StringList");
+  emscripten::function("stability", &stability);
+  emscripten::function("lifetime", &lifetime);
+  emscripten::function("simulate", &js_simulate);
+  emscripten::function("stabilityMap", &js_stability_map);
+  emscripten::function("version", &version);
+}
+
+#else  // native: the benchmark of the same calls (heavytop_web_bench)
+
+double median_ms(int n, const std::function<void(int)>& f) {
+  std::vector<double> t;
+  for (int i = 0; i < n; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    f(i);
+    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+std::string toy(double spin) {
+  return fmt::format("[body]\nA = 4.35e-05\nB = 4.35e-05\nC = 1.2e-05\nmass = 0.06\nlength = 0.025\ngravity = 9.81\n"
+                     "[motion]\nspin = {}\ntheta0 = 0.05\nphi0 = 0.0\n", spin);
+}
+
+}  // namespace
+
+// The page's benchmark (web/explore.js benchmark()) natively: the same calls, medians in ms.
+int main() {
+  char folder[] = "/dev/shm/heavytop-web-bench-XXXXXX";  // memory, as the page's file system
+  if (!::mkdtemp(folder) || ::chdir(folder) != 0) return 1;
+  std::vector<unsigned char> bytes;
+  const auto ok = [](const Result& r) { if (r.status != 0) throw std::runtime_error(r.message); };
+  const double verdict = median_ms(51, [&](int i) { ok(run("stability", cli::add_stability_command, toy(100.0 + i), {"--format", "json"})); });
+  if (std::getenv("HEAVYTOP_BENCH_VERDICT_ONLY")) return std::printf("{\"verdict_ms\": %.3f}\n", verdict) < 0;
+  const double simulate = median_ms(11, [&](int) {
+    ok(run("simulate", cli::add_simulate_command, toy(200.0), {"--model", "nonlinear", "--t-end", "10", "--samples", "1001", "--format", "csv"}));
+  });
+  const double map = median_ms(5, [&](int) { ok(map_verdicts(bytes, toy(200.0), "spin", 0, 400, 200, "B/A", 0.75, 1.25, 200)); });
+  std::printf("{\"verdict_ms\": %.3f, \"toy_top_10s_1001_ms\": %.3f, \"map_200x200_ms\": %.3f}\n", verdict, simulate, map);
+  std::remove("config.toml");
+  std::remove(kOutput);
+  ::rmdir(folder);
+  return 0;
+}
+#endif
