@@ -299,7 +299,7 @@ def lifetime(body: Body, *, spin: float, theta0: float = 0.0, phi0: float = 0.0,
     """
     return Lifetime.from_json(_core.lifetime(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                              phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
-                                             atol=atol, max_steps=max_steps))
+                                             atol=atol, max_steps=max_steps), body=body, spin=spin)
 def rpm(value: float) -> float:
     """rad/s of a spin given in rpm (SPEC section 9): rpm(3000) == 100 pi. Every function taking
     a spin in rad/s takes rpm(x) for a spin of x rpm, exactly as the command line's --spin-rpm."""
