@@ -34,11 +34,12 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
-                   precession, read_map, rpm, simulate, stability, sweep)
+                   load, precession, read_map, rpm, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
-                      StabilityMap, Trajectory, Wander, Answer)
+                      StabilityMap, Trajectory, Wander, Answer, BodyReport, Precession, SteadyPrecession,
+                      Configuration)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
@@ -47,4 +48,5 @@ __all__ = [
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
+    "load", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
 ]

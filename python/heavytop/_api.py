@@ -13,12 +13,12 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import Body
-from .results import (Comparison, DecayFit, Derivation, DerivationCheck, Lifetime, Rotations, Stability,
-                      StabilityMap, Trajectory)
+from .results import (BodyReport, Comparison, Configuration, DecayFit, Derivation, DerivationCheck, Lifetime,
+                      Precession, Rotations, Stability, StabilityMap, Trajectory)
 from .results import SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
-           "body_report", "precession", "rpm", "lifetime", "fit_decay"]
+           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -358,27 +358,51 @@ def body_from_parts(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.
     return body
 
 
-def body_report(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> Dict[str, Any]:
-    """json.loads of `heavytop body --format json` for these parts (see body_from_parts): {"A", "B",
+def body_report(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> BodyReport:
+    """The mass properties these parts make, a BodyReport (.A, .B, .C kg m^2, .mass kg, .length m,
+    .general) whose to_dict() is json.loads of `heavytop body --format json` (see body_from_parts): {"A", "B",
     "C" (kg m^2 about O), "mass" (kg), "length" (m), "gravity", "products": {"xy", "xz", "yz"} (kg m^2),
     "offset": {"x", "y"} (m), "principal_axis_tilt" (rad), "general" (bool), "parts": [{"name",
     "mass", "centre_of_mass", "inertia"}]}. A general body is reported, not refused."""
-    return _assemble(parts, gravity, folder, True)[0]
+    return BodyReport.from_json(_assemble(parts, gravity, folder, True)[0])
 
 
-def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None) -> Dict[str, Any]:
-    """Steady motions at a tilt: json.loads of `heavytop precession --tilt TILT --format json`.
+def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None) -> Precession:
+    """Steady motions at a tilt (rad), a Precession (.slow, .fast: each a SteadyPrecession with
+    .rate rad/s, .period s, .nutation_frequency rad/s, .state, or None; .min_spin rad/s) whose
+    to_dict() is json.loads of `heavytop precession --tilt TILT --format json`.
 
         body      Body (SI units)
         tilt      rad, the axis's angle from the upward vertical, in (0, pi)
         spin      rad/s, w3 = w.k (or spin_rpm in rpm; not both; default 0)
 
-    Returns {"body", "tilt", "spin", "steady_precession": {"slow", "fast" (each {"rate" rad/s,
+    to_dict() is {"body", "tilt", "spin", "steady_precession": {"slow", "fast" (each {"rate" rad/s,
     "period" s, "nutation_frequency" rad/s, "state": the SPEC section 2 state on it} or None),
     "min_spin" (rad/s or None), "slow_limit", "fast_limit"} (None for A != B),
     "permanent_rotations": [{"plane", "rate", "period", "stable", "eigenvalues", "state"}]}.
     """
-    return _core.precession(body, tilt, _spin(spin, spin_rpm))
+    return Precession.from_json(_core.precession(body, tilt, _spin(spin, spin_rpm)))
+
+
+def load(path: "os.PathLike[str] | str") -> Configuration:
+    """A configuration file (TOML, SPEC section 4), read by the command line's own reader:
+    a Configuration with .body (a Body: [body] or its [[body.part]], and [damping]; SI units),
+    .motion (the [motion] keys as simulate()'s keyword arguments: spin rad/s, theta0, phi0 rad,
+    theta_rate0, phi_rate0 rad/s; 0 where not given), .options (the further sections'
+    values, "simulate.t_end": 10.0) and .section(NAME).
+
+        cfg = heavytop.load("examples/toy-top.toml")
+        heavytop.stability(cfg.body, **cfg.motion)
+
+    Bad files raise InvalidInput with the command line's message for `--config FILE`, the
+    file's key first ("motion.spni: unknown key in FILE", "body.B: is required in [body], ..."),
+    or "path: cannot read 'FILE': no such file". A general body (SPEC section 11) is refused
+    as every analysis but `simulate --model nonlinear` refuses it.
+    """
+    path = os.fspath(path)
+    body, motion, options, given, from_parts = _core.load_configuration(path)
+    return Configuration(path=path, body=body, motion=dict(motion), options=dict(options), given=tuple(given),
+                         from_parts=bool(from_parts))
 
 
 def _spin(spin: Optional[float], spin_rpm: Optional[float]) -> float:

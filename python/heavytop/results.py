@@ -26,7 +26,8 @@ from . import _views
 __all__ = [
     "JsonResult", "ModelStability", "Lyapunov", "Wander", "Answer", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
-    "StabilityMap", "FittedParameter", "DecayFit",
+    "StabilityMap", "FittedParameter", "DecayFit", "UNITS", "SteadyPrecession", "Precession", "BodyReport",
+    "Configuration",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -665,6 +666,28 @@ class DecayFit(JsonResult):
                    stop_time=data["stop_time"], termination=data["termination"], warnings=tuple(data["warnings"]),
                    _data=data)
 
+    def spin_law(self, t: npt.ArrayLike) -> FloatArray:
+        """rad/s, the fitted law C w' = -d_a w - tau0 sign(w) from spin0 at times t (s), 0 once the
+        friction has stopped it: the curve the residuals are measured from."""
+        return _views.spin_law(np.asarray(t, dtype=np.float64), self.spin0.value, self.C, self.axial.value,
+                               self.friction.value, False)
+
+    def plot(self, t: npt.ArrayLike, spin: npt.ArrayLike) -> Any:
+        """The measured points (t in s, spin in rad/s) and the fitted law through them; returns the
+        matplotlib Figure."""
+        t = np.asarray(t, dtype=np.float64)
+        figure, (ax,) = _views.new_figure(1)
+        ax.plot(t, np.asarray(spin, dtype=np.float64), ".", ms=4, label="measured")
+        fine = np.linspace(0.0, float(np.max(t)), 500)
+        ax.plot(fine, self.spin_law(fine), lw=1.5,
+                label=f"fit: d_a = {self.axial.value:.3g} N m s, tau0 = {self.friction.value:.3g} N m")
+        ax.set_xlabel(_views.label("t"))
+        ax.set_ylabel(_views.label("spin"))
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="small")
+        ax.set_title(f"Spin decay fitted (rms residual {self.rms_residual:.3g} rad/s)")
+        return figure
+
 
 def _column(name: str, doc: str) -> property:
     def get(self: "Trajectory") -> FloatArray:
@@ -889,3 +912,127 @@ class StabilityMap(_Columns):
                 for name, v in self.verdicts.items()]
         return (f"<p>A stability map over {ranges}.</p>"
                 + _views.html_table(("model", "stable points", "share"), rows))
+
+
+# ---- precession, body, load ------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class SteadyPrecession(JsonResult):
+    """One steady precession of a symmetric top at a tilt (SPEC section 12's "slow" or "fast")."""
+
+    rate: float
+    """rad/s, the precession rate W (the axis turns about the vertical at W)."""
+    period: float
+    """s, 2 pi / |W|."""
+    nutation_frequency: float
+    """rad/s, the frequency of small nutations about it."""
+    state: Dict[str, float]
+    """The SPEC section 2 state on it (spin, theta0, phi0, theta_rate0, phi_rate0): simulate(body, **state)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "SteadyPrecession":
+        return cls(rate=data["rate"], period=data["period"], nutation_frequency=data["nutation_frequency"],
+                   state=dict(data["state"]), _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Precession(JsonResult):
+    """Steady motions at a tilt: `heavytop precession --tilt TILT --format json` (``to_dict()``)."""
+
+    tilt: float
+    """rad, the axis's angle from the upward vertical."""
+    spin: float
+    """rad/s, w3 = w.k."""
+    slow: Optional[SteadyPrecession]
+    """The slow steady precession; None when there is none (or A != B)."""
+    fast: Optional[SteadyPrecession]
+    """The fast steady precession; None when there is none (or A != B)."""
+    min_spin: Optional[float]
+    """rad/s, the least spin with a steady precession at this tilt (None for A != B)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Precession":
+        steady = data.get("steady_precession") or {}
+        def one(name: str) -> Optional[SteadyPrecession]:
+            value = steady.get(name)
+            return None if value is None else SteadyPrecession.from_json(value)
+        return cls(tilt=data["tilt"], spin=data["spin"], slow=one("slow"), fast=one("fast"),
+                   min_spin=steady.get("min_spin"), _data=data)
+
+    def __repr__(self) -> str:
+        f = _views.fmt
+        lines = [f"At tilt {self.tilt:.4g} rad ({np.degrees(self.tilt):.3g}°), spin {self.spin:.6g} rad/s:"]
+        for name, p in (("slow", self.slow), ("fast", self.fast)):
+            lines.append(f"  {name}: " + ("none" if p is None else
+                         f"precession {f(p.rate, 'rad/s')} (period {f(p.period, 's')}), nutation {f(p.nutation_frequency, 'rad/s')}"))
+        lines.append(f"  least spin for a steady precession: {f(self.min_spin, 'rad/s')}")
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        f = _views.fmt
+        rows = [(name, "none", "", "") if p is None else
+                (name, f(p.rate, "rad/s"), f(p.period, "s"), f(p.nutation_frequency, "rad/s"))
+                for name, p in (("slow", self.slow), ("fast", self.fast))]
+        return (f"<p>{html.escape(repr(self).splitlines()[0])} least spin for a steady precession "
+                f"{html.escape(f(self.min_spin, 'rad/s'))}.</p>"
+                + _views.html_table(("precession", "rate", "period", "nutation"), rows))
+
+
+@dataclass(frozen=True, eq=False)
+class BodyReport(JsonResult):
+    """A body's mass properties: `heavytop body --format json` (``to_dict()``)."""
+
+    A: float
+    """kg m^2, about body x through O."""
+    B: float
+    """kg m^2, about body y through O."""
+    C: float
+    """kg m^2, about the spin axis z through O."""
+    mass: float
+    """kg."""
+    length: float
+    """m, the centre of mass's height along z above O."""
+    general: bool
+    """True for SPEC section 11's general body (centre of mass off z, or z not a principal axis)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "BodyReport":
+        return cls(A=data["A"], B=data["B"], C=data["C"], mass=data["mass"], length=data["length"],
+                   general=bool(data.get("general", False)), _data=data)
+
+    def __repr__(self) -> str:
+        return (f"BodyReport(A={self.A!r}, B={self.B!r}, C={self.C!r}, mass={self.mass!r}, length={self.length!r}, "
+                f"general={self.general!r}, parts={len(self._data.get('parts', []))})")
+
+
+@dataclass(frozen=True, eq=False)
+class Configuration:
+    """A configuration file read by heavytop.load(): the body, the motion and the other sections'
+    options, as the command line reads them (``--config FILE``)."""
+
+    path: str
+    """The file read."""
+    body: Body
+    """The body of [body] (its moments, or those its [[body.part]] make), with [damping]."""
+    motion: Dict[str, float]
+    """[motion]: spin (rad/s), theta0, phi0 (rad), theta_rate0, phi_rate0 (rad/s); 0 where not given
+    (spin_rpm read as spin in rad/s): simulate(cfg.body, **cfg.motion)."""
+    options: Dict[str, Any]
+    """The further sections' values by "section.key" ("simulate.t_end": 10.0), as TOML typed them."""
+    given: Tuple[str, ...]
+    """The body and motion keys the file gives ("body.A", "motion.spin", ...)."""
+    from_parts: bool
+    """True when [[body.part]] describe the body."""
+
+    def section(self, name: str) -> Dict[str, Any]:
+        """The options of section `name` by key: cfg.section("simulate") == {"t_end": 10.0, ...}."""
+        prefix = name + "."
+        return {k[len(prefix):]: v for k, v in self.options.items() if k.startswith(prefix)}
+
+    def _repr_html_(self) -> str:
+        rows = [("body", repr(self.body))] + [(f"motion.{k}", _views.fmt(v)) for k, v in self.motion.items()]
+        rows += [(k, _views.fmt(v)) for k, v in self.options.items()]
+        return _views.html_table(("key", "value"), rows, caption=self.path)

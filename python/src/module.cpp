@@ -44,4 +44,5 @@ PYBIND11_MODULE(_core, m) {
   bind_derive(m);
   bind_parts(m);
   bind_fit_decay(m);
+  bind_config(m);
 }

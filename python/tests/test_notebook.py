@@ -2,6 +2,7 @@
 holding the command line's numbers (CSV and JSON) for the same input."""
 import io
 import math
+import os
 
 import numpy as np
 import pytest
@@ -14,6 +15,8 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
 TOP = heavytop.example_toy_top()
+DECAY = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                     "examples", "spin-decay.csv")
 MOTION = dict(spin=200.0, theta0=0.05)
 
 
@@ -142,3 +145,19 @@ def test_every_result_has_html_answer_first():
     assert f"at most {np.degrees(m.tilt.max()):.3g}°" in html
     fit = heavytop.fit_decay([0, 1, 2, 3, 4], [200, 190, 180.5, 171.5, 163], TOP)
     assert f"<td>axial.value</td><td>{fit.axial.value:.6g}</td>" in fit._repr_html_()
+
+
+def test_decay_fit_law_gives_its_residual_and_plot():
+    data = np.loadtxt(DECAY, delimiter=",", comments="#", skiprows=5)
+    t, w = data[:, 0], data[:, 1]
+    fit = heavytop.fit_decay(t, w)
+    expected = cli_json("fit-decay", "--data", DECAY)
+    assert fit.to_dict() == expected
+    law = fit.spin_law(t)
+    assert law[0] == fit.spin0.value
+    assert np.sqrt(np.mean((law - w) ** 2)) == pytest.approx(fit.rms_residual, rel=1e-9)
+    if fit.stop_time is not None:
+        assert fit.spin_law([fit.stop_time * (1 - 1e-9)])[0] < 1e-3 and fit.spin_law([fit.stop_time * 1.01])[0] == 0.0
+    ax = fit.plot(t, w).axes[0]
+    assert ax.get_xlabel() == "t (s)" and ax.get_ylabel() == "spin (rad/s)"
+    np.testing.assert_array_equal(ax.lines[0].get_ydata(), w)
