@@ -235,7 +235,7 @@ class Lifetime(JsonResult):
         ax.set_ylabel(_views.label("spin"))
         ax.set_ylim(bottom=0)
         ax.grid(True, alpha=0.3)
-        ax.legend(loc="upper right", fontsize="small")
+        ax.legend(loc="lower left", fontsize="small")
         ax.set_title("How long it stays up")
         return figure
 
@@ -672,6 +672,16 @@ class DecayFit(JsonResult):
         return _views.spin_law(np.asarray(t, dtype=np.float64), self.spin0.value, self.C, self.axial.value,
                                self.friction.value, False)
 
+    def _repr_html_(self) -> str:
+        def pm(p: FittedParameter, unit: str) -> str:
+            spread = "" if p.uncertainty is None else f" ± {p.uncertainty:.2g}"
+            return f"{p.value:.4g}{spread} {unit}" + (" (at its bound)" if p.at_bound else "")
+        head = (f"<p>Fitted: axial damping d_a = {html.escape(pm(self.axial, 'N m s'))}, dry friction tau0 = "
+                f"{html.escape(pm(self.friction, 'N m'))}, spin at t = 0 {html.escape(pm(self.spin0, 'rad/s'))}; "
+                f"rms residual {self.rms_residual:.3g} rad/s over {self.points} points."
+                + "".join(f"<br>⚠ {html.escape(w)}" for w in self.warnings) + "</p>")
+        return head + JsonResult._repr_html_(self)
+
     def plot(self, t: npt.ArrayLike, spin: npt.ArrayLike) -> Any:
         """The measured points (t in s, spin in rad/s) and the fitted law through them; returns the
         matplotlib Figure."""
@@ -878,14 +888,14 @@ class StabilityMap(_Columns):
 
     def plot(self, name: str = "linearized", ax: Any = None) -> Any:
         """A heat map of column `name` (stable in colour, unstable grey) over a two-parameter map
-        (a three-parameter map's slice()), the first key across, with matplotlib; returns the
-        Axes. Raises ValueError unless the map has two keys."""
+        (a three-parameter map's slice()), the first key across, each axis labelled with its unit,
+        with matplotlib, into `ax` or a new Figure; returns the Axes (.figure is the Figure).
+        Raises ValueError unless the map has two keys."""
         if len(self._shape) != 2:
             raise ValueError(f"plot: a heat map needs two varied keys, this map has {len(self._shape)} (take a slice())")
-        import matplotlib.pyplot as plt
         from matplotlib.colors import ListedColormap
-        if ax is None:
-            ax = plt.figure().add_subplot()
+        if ax is None:  # a Figure of its own, outside pyplot's state (a notebook shows it once)
+            ax = _views.new_figure(1, height=4.0)[1][0]
         first, second = list(self.parameters)
         x, y = self.grid(first)[:, 0], self.grid(second)[0, :]
         ax.pcolormesh(x, y, self.grid(name).T.astype(float), cmap=ListedColormap(["#d9d9d9", "#2ca02c"]),
