@@ -18,7 +18,7 @@ from .results import (BodyReport, Comparison, Configuration, DecayFit, Derivatio
 from .results import SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
-           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load"]
+           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -442,3 +442,45 @@ def fit_decay(t: npt.ArrayLike, spin: npt.ArrayLike, body: Optional[Body] = None
         error.result = fit  # type: ignore[attr-defined]
         raise error
     return fit
+
+
+def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, spin: Optional[float] = None,
+           spin_rpm: Optional[float] = None, theta0: Optional[float] = None, phi0: Optional[float] = None,
+           theta_rate0: Optional[float] = None, phi_rate0: Optional[float] = None, t_end: Optional[float] = None,
+           map: "os.PathLike[str] | str | None" = None,
+           slice: Optional[Tuple[str, SequenceOf[float]]] = None) -> str:
+    """Writes the report folder of `heavytop report --output FOLDER` (SPEC section 5): report.html
+    (the answer first, the 3D view, the models, the motion), its figures (PNG, SVG, by gnuplot)
+    and data (CSV, JSON); returns the path of FOLDER/report.html.
+
+        body        a Body (SI units), or a Configuration from load(): its body, its motion (the
+                    keywords below override it) and its file named in the title, as --config
+        folder      where to write (created if needed)
+        spin, theta0, phi0, theta_rate0, phi_rate0
+                    rad/s, rad: the initial state (default 0, or the Configuration's); spin_rpm in rpm
+        t_end       s, > 0: the motion's horizon (None: up to the fall and a fifth more when it
+                    falls, else a few precession periods)                         [--t-end]
+        map         a sweep's file (CSV or HDF5, `heavytop sweep --output`) to draw   [--map]
+        slice       (KEY, [V1, ...]): a three-key map's heat maps hold KEY at its grid values
+                    nearest these (default: the last key at its first, middle, last)  [--slice]
+
+    Runs with the GIL released. Bad input raises InvalidInput naming the argument ("t_end: must
+    be finite and > 0", "map: ...", "slice: ..."); a figure gnuplot cannot draw raises RuntimeError.
+    """
+    source = ""
+    state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
+    if isinstance(body, Configuration):
+        source, state, body = body.path, dict(body.motion), body.body
+    given = {"theta0": theta0, "phi0": phi0, "theta_rate0": theta_rate0, "phi_rate0": phi_rate0}
+    state.update({k: v for k, v in given.items() if v is not None})
+    if spin is not None or spin_rpm is not None:
+        state["spin"] = _spin(spin, spin_rpm)
+    held, values = "", []
+    if slice is not None:
+        if isinstance(slice, str) or len(slice) != 2:
+            raise _invalid("slice", "must be (KEY, [V1, V2, ...])")
+        held, values = str(slice[0]), [float(v) for v in np.atleast_1d(slice[1])]
+    folder = os.fspath(folder)
+    _core.write_report(folder, body, state["spin"], state["theta0"], state["phi0"], state["theta_rate0"],
+                       state["phi_rate0"], t_end, "" if map is None else os.fspath(map), held, values, source)
+    return os.path.join(folder, "report.html")

@@ -44,5 +44,6 @@ void bind_derive(py::module_& m);
 void bind_parts(py::module_& m);
 void bind_fit_decay(py::module_& m);
 void bind_config(py::module_& m);
+void bind_report(py::module_& m);
 
 }  // namespace heavytop::python

@@ -45,4 +45,5 @@ PYBIND11_MODULE(_core, m) {
   bind_parts(m);
   bind_fit_decay(m);
   bind_config(m);
+  bind_report(m);
 }

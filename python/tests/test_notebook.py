@@ -161,3 +161,14 @@ def test_decay_fit_law_gives_its_residual_and_plot():
     ax = fit.plot(t, w).axes[0]
     assert ax.get_xlabel() == "t (s)" and ax.get_ylabel() == "spin (rad/s)"
     np.testing.assert_array_equal(ax.lines[0].get_ydata(), w)
+
+
+def test_help_lists_every_function_and_each_documents_units():
+    import inspect
+    functions = [n for n in heavytop.__all__ if inspect.isroutine(getattr(heavytop, n))]
+    assert {"load", "report", "stability", "simulate", "lifetime", "fit_decay"} <= set(functions)
+    for name in functions:
+        assert f"{name}(" in heavytop.__doc__, name
+        doc = getattr(heavytop, name).__doc__ or ""
+        if name not in ("derive", "derive_rotations", "derive_check", "example_toy_top", "example_motion", "grid_values"):
+            assert any(u in doc for u in ("rad", "kg", " m", " s,", "SI")), name
