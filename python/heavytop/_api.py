@@ -350,11 +350,13 @@ def body_from_parts(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.
         folder   where a relative mesh path starts (default: the working folder)
 
     Bad parts raise InvalidInput naming the part as the command line does ("body.part[0].radius
-    (cone): must be a finite number > 0"); so does a general body (centre of mass off z, or z not
-    a principal axis), which no model integrates yet: body_report() describes it.
+    (cone): must be a finite number > 0"). Parts off the axis make SPEC section 11's general body
+    (the centre of mass off z, or z not a principal axis: body.general, .offset_x, .offset_y, .Ixy,
+    .Ixz, .Iyz), the tensor about the parts' own axes as `simulate --model nonlinear --config`
+    takes it: simulate(body, "nonlinear") integrates it, the other analyses refuse it.
     """
-    body = _assemble(parts, gravity, folder, False)[1]
-    assert body is not None  # a general body raised InvalidInput
+    body = _assemble(parts, gravity, folder, True)[1]
+    assert body is not None
     return body
 
 

@@ -4,7 +4,6 @@
 #include <string>
 #include <variant>
 
-#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -20,7 +19,8 @@ using namespace pybind11::literals;
 namespace {
 
 // (Body, {motion key: value}, {"section.key": value}, [given keys], parts?) of the file `path`;
-// the body and the motion checked as `heavytop stability --config` checks them.
+// the body and the motion checked as `heavytop simulate --config` checks them: a general body
+// (SPEC section 11) is kept (the analyses that cannot take it refuse it).
 py::tuple load_configuration(const std::string& path) {
   const io::Configuration config = io::read_configuration(path, "path");
   Body body = config.body;
@@ -28,17 +28,27 @@ py::tuple load_configuration(const std::string& path) {
     for (const std::string& key : io::required_body_keys())
       if (!config.given.count(key))
         throw InvalidInput(key, "is required in [body], unless [[body.part]] describe the body");
-    for (const auto& [key, value] : config.general)
-      if (value != 0.0)
-        throw InvalidInput(key, fmt::format("is {:g}: the general body (SPEC section 11: the centre of mass off "
-                                            "the z axis, products of inertia) is integrated by `simulate --model "
-                                            "nonlinear` only (`heavytop body` reports it)",
-                                            value));
-  } else {
-    const Damping damping = body.damping;
+    const auto given = [&](const char* key) {
+      const auto it = config.general.find(key);
+      return it == config.general.end() ? 0.0 : it->second;
+    };
+    body.general = {given("body.Ixy"), given("body.Ixz"), given("body.Iyz"), given("body.offset_x"),
+                    given("body.offset_y")};
+  } else {  // as cli/common.cpp makes it for `simulate --model nonlinear`: a general assembly as it is
     const io::AssembledBody assembled = io::assemble_parts(config.parts);
-    body = body_of(assembled.assembly, config.body.gravity, assembled.names);
-    body.damping = damping;
+    const BodyAssembly& a = assembled.assembly;
+    if (!a.general()) {
+      const Damping damping = body.damping;
+      body = body_of(a, config.body.gravity, assembled.names);
+      body.damping = damping;
+    } else {
+      body.A = a.A;
+      body.B = a.B;
+      body.C = a.C;
+      body.mass = a.total.mass;
+      body.length = a.length;
+      body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
+    }
   }
   validate(body);
   validate(config.motion);
