@@ -464,7 +464,9 @@ class Comparison(JsonResult):
 
     def _repr_html_(self) -> str:
         f = _views.fmt
-        best = min(self.models.items(), key=lambda item: item[1].max_angle_error)[0]
+        # lagrange-exact is the nonlinear motion in closed form: the closest of the approximations.
+        approximate = {n: m for n, m in self.models.items() if n != "lagrange-exact"} or self.models
+        best = min(approximate.items(), key=lambda item: item[1].max_angle_error)[0]
         head = (f"<p>Closest to the nonlinear body: <b>{html.escape(best)}</b> (max angle error "
                 f"{html.escape(f(self.models[best].max_angle_error, 'rad'))}). The nonlinear body nutates at "
                 f"{html.escape(f(self.nonlinear.nutation_frequency, 'rad/s'))} and precesses at "
@@ -1016,6 +1018,25 @@ class BodyReport(JsonResult):
     def __repr__(self) -> str:
         return (f"BodyReport(A={self.A!r}, B={self.B!r}, C={self.C!r}, mass={self.mass!r}, length={self.length!r}, "
                 f"general={self.general!r}, parts={len(self._data.get('parts', []))})")
+
+    def _repr_html_(self) -> str:
+        f, d = _views.fmt, self._data
+        kind = ("a general body (SPEC section 11: the centre of mass off z, or z not a principal axis)"
+                if self.general else "z a principal axis with the centre of mass on it")
+        head = (f"<p>{self.mass * 1e3:.4g} g, the centre of mass {self.length * 1e3:.4g} mm above O along z; "
+                f"{html.escape(kind)}.</p>")
+        rows = [("A", f(self.A, "kg m^2")), ("B", f(self.B, "kg m^2")), ("C", f(self.C, "kg m^2")),
+                ("mass", f(self.mass, "kg")), ("length", f(self.length, "m")), ("gravity", f(d.get("gravity"), "m/s^2"))]
+        if self.general:
+            rows += [(f"products.{k}", f(v, "kg m^2")) for k, v in d.get("products", {}).items()]
+            rows += [(f"offset.{k}", f(v, "m")) for k, v in d.get("offset", {}).items()]
+        table = _views.html_table(("", "value"), rows)
+        parts = d.get("parts") or []
+        if parts:
+            table += _views.html_table(("part", "mass", "centre of mass z"),
+                                       [(p.get("name", ""), f(p.get("mass"), "kg"),
+                                         f((p.get("centre_of_mass") or [None] * 3)[2], "m")) for p in parts])
+        return head + table
 
 
 @dataclass(frozen=True, eq=False)

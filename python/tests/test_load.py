@@ -106,3 +106,12 @@ def test_body_report_is_typed_and_the_cli_s():
     assert (report.A, report.C, report.mass, report.length, report.general) == \
         (expected["A"], expected["C"], expected["mass"], expected["length"], False)
     assert (config.body.A, config.body.C, config.body.mass) == (report.A, report.C, report.mass)
+
+
+def test_body_report_html_has_units_and_parts():
+    parts = [{"shape": "cone", "radius": 0.02, "height": 0.02, "density": 700.0},
+             {"shape": "cylinder", "radius": 0.003, "height": 0.03, "z0": 0.02, "density": 700.0}]
+    report = heavytop.body_report(parts)
+    html = report._repr_html_()
+    assert f"<td>C</td><td>{report.C:.6g} kg m^2</td>" in html and f"{report.mass * 1e3:.4g} g" in html
+    assert html.count("<td>body.part[") == 2
