@@ -41,6 +41,7 @@ Functions (each a command of the command line; help(heavytop.NAME) for its units
     body_report(parts)           the mass properties of parts                         [body]
     load(path)                   a configuration file: body, motion, options          [--config]
     report(body, folder)         the report folder                                    [report]
+    show(body)                   the report inline in a notebook: the body in 3D      [report]
     derive(), derive_rotations(), derive_check()   the symbolic derivations           [derive]
     rpm(x)                       rad/s of x rpm                                       [--spin-rpm]
     example_toy_top(), example_motion()            the built-in example
@@ -57,12 +58,12 @@ examples/notebooks/tour.ipynb is a tour.
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
-                   load, precession, read_map, report, rpm, simulate, stability, sweep)
+                   load, precession, read_map, report, rpm, show, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
                       StabilityMap, Trajectory, Wander, Answer, BodyReport, Precession, SteadyPrecession,
-                      Configuration)
+                      Configuration, ReportView)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
@@ -71,5 +72,5 @@ __all__ = [
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
-    "load", "report", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
+    "load", "report", "show", "ReportView", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
 ]

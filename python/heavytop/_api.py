@@ -13,12 +13,12 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import Body
-from .results import (BodyReport, Comparison, Configuration, DecayFit, Derivation, DerivationCheck, Lifetime,
+from .results import (BodyReport, Comparison, Configuration, ReportView, DecayFit, Derivation, DerivationCheck, Lifetime,
                       Precession, Rotations, Stability, StabilityMap, Trajectory)
 from .results import SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
-           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report"]
+           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report", "show"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -486,3 +486,15 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
     _core.write_report(folder, body, state["spin"], state["theta0"], state["phi0"], state["theta_rate0"],
                        state["phi_rate0"], t_end, "" if map is None else os.fspath(map), held, values, source)
     return os.path.join(folder, "report.html")
+
+
+def show(body: "Body | Configuration", folder: "os.PathLike[str] | str | None" = None, *, height: int = 720,
+         **options: Any) -> ReportView:
+    """The report (report(), the same keywords: spin rad/s, theta0 rad, ..., t_end s, map) shown
+    inline in a notebook: a ReportView whose HTML is the report's page with its three.js view of
+    the body moving in 3D, its plots and figures inlined (a few MB; works offline, in an iframe
+    `height` pixels tall). The folder is written to `folder`, or to a new temporary folder."""
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
+    report(body, folder, **options)
+    return ReportView(folder, height)

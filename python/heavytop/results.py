@@ -27,7 +27,7 @@ __all__ = [
     "JsonResult", "ModelStability", "Lyapunov", "Wander", "Answer", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
     "StabilityMap", "FittedParameter", "DecayFit", "UNITS", "SteadyPrecession", "Precession", "BodyReport",
-    "Configuration",
+    "Configuration", "ReportView",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -1067,3 +1067,54 @@ class Configuration:
         rows = [("body", repr(self.body))] + [(f"motion.{k}", _views.fmt(v)) for k, v in self.motion.items()]
         rows += [(k, _views.fmt(v)) for k, v in self.options.items()]
         return _views.html_table(("key", "value"), rows, caption=self.path)
+
+
+class ReportView:
+    """The report's page (report.html of `heavytop report`) as one self-contained HTML document:
+    its scripts (the three.js bundle heavytop-report.js and its data report-data.js) and figures
+    inlined, so that a notebook shows it, the body moving in 3D included, offline, in an iframe.
+    show() makes it; .folder is the report folder it was read from."""
+
+    __slots__ = ("folder", "html", "height")
+
+    def __init__(self, folder: str, height: int = 720) -> None:
+        import base64
+        import os
+        import re
+        self.folder = folder
+        self.height = int(height)
+        with open(os.path.join(folder, "report.html"), encoding="utf-8") as f:
+            page = f.read()
+
+        def script(name: str) -> str:
+            path = os.path.join(folder, name)
+            if not os.path.exists(path):
+                return ""
+            with open(path, encoding="utf-8") as f:
+                return "<script>" + f.read().replace("</script", "<\\/script") + "</script>"
+
+        page = page.replace("<script src='report-data.js'></script>", script("report-data.js"))
+        bundle = script("heavytop-report.js")  # deferred in the page: it runs once the body is parsed
+        page = page.replace("<script src='heavytop-report.js' defer></script>", "")
+        page = page.replace("</body>", bundle + "</body>") if bundle else page
+
+        def image(match: "re.Match[str]") -> str:
+            name = match.group(1)
+            with open(os.path.join(folder, name), "rb") as f:
+                data = base64.b64encode(f.read()).decode("ascii")
+            kind = "image/svg+xml" if name.endswith(".svg") else "image/png"
+            return f"src='data:{kind};base64,{data}'"
+        self.html = re.sub(r"src='([A-Za-z0-9_.-]+\.(?:svg|png))'", image, page)
+
+    def save(self, path: str) -> str:
+        """Writes the self-contained page to `path` (one file, opens offline); returns path."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.html)
+        return path
+
+    def _repr_html_(self) -> str:
+        return (f"<iframe srcdoc=\"{html.escape(self.html, quote=True)}\" style=\"width: 100%; height: {self.height}px; "
+                f"border: 1px solid #ddd\" sandbox=\"allow-scripts\"></iframe>")
+
+    def __repr__(self) -> str:
+        return f"ReportView(folder={self.folder!r}, {len(self.html)} characters)"

@@ -59,3 +59,20 @@ def test_report_refuses_bad_input(tmp_path):
         heavytop.report(TOP, tmp_path / "r", spin=200.0, slice=("spin", [1.0]))
     with pytest.raises(heavytop.InvalidInput, match="^map: "):
         heavytop.report(TOP, tmp_path / "r", spin=200.0, map=tmp_path / "missing.csv")
+
+
+def test_show_inlines_the_report_page_with_its_3d_view(tmp_path):
+    view = heavytop.show(TOP, tmp_path / "r", spin=200.0, theta0=0.05, t_end=1.0)
+    page = view.html
+    assert "src='report-data.js'" not in page and "src='heavytop-report.js'" not in page
+    assert "src='tilt.svg'" not in page and "src='data:image/svg+xml;base64," in page
+    if os.path.exists(tmp_path / "r" / "heavytop-report.js"):  # the build had npm: the 3D view's bundle
+        assert "window.HEAVYTOP_REPORT = " in page and "id='scene'" in page  # where three.js draws
+        bundle = (tmp_path / "r" / "heavytop-report.js").read_text()
+        assert bundle[:2000].replace("</script", "<\\/script") in page
+        assert page.index("window.HEAVYTOP_REPORT") < page.index(bundle[:200])  # the data before the bundle
+        assert page.rindex("</body>") > page.index(bundle[:200])                # the bundle after the page
+    assert (tmp_path / "r" / "report.html").read_text().split("<h2")[1] in page  # the page's own text
+    frame = view._repr_html_()
+    assert frame.startswith("<iframe srcdoc=\"") and "height: 720px" in frame and "&lt;h2" in frame
+    assert view.save(str(tmp_path / "one.html")) and (tmp_path / "one.html").read_text() == page
