@@ -450,7 +450,7 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
            spin_rpm: Optional[float] = None, theta0: Optional[float] = None, phi0: Optional[float] = None,
            theta_rate0: Optional[float] = None, phi_rate0: Optional[float] = None, t_end: Optional[float] = None,
            map: "os.PathLike[str] | str | None" = None,
-           slice: Optional[Tuple[str, SequenceOf[float]]] = None) -> str:
+           slice: Optional[Tuple[str, SequenceOf[float]]] = None, title: Optional[str] = None) -> str:
     """Writes the report folder of `heavytop report --output FOLDER` (SPEC section 5): report.html
     (the answer first, the 3D view, the models, the motion), its figures (PNG, SVG, by gnuplot)
     and data (CSV, JSON); returns the path of FOLDER/report.html.
@@ -465,6 +465,8 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
         map         a sweep's file (CSV or HDF5, `heavytop sweep --output`) to draw   [--map]
         slice       (KEY, [V1, ...]): a three-key map's heat maps hold KEY at its grid values
                     nearest these (default: the last key at its first, middle, last)  [--slice]
+        title       the title's first words; None: the Configuration's file, else those of the
+                    command line without --config ("The built-in example, a wooden toy top")
 
     Runs with the GIL released. Bad input raises InvalidInput naming the argument ("t_end: must
     be finite and > 0", "map: ...", "slice: ..."); a figure gnuplot cannot draw raises RuntimeError.
@@ -473,6 +475,8 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
     state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
     if isinstance(body, Configuration):
         source, state, body = body.path, dict(body.motion), body.body
+    if title is not None:
+        source = str(title)
     given = {"theta0": theta0, "phi0": phi0, "theta_rate0": theta_rate0, "phi_rate0": phi_rate0}
     state.update({k: v for k, v in given.items() if v is not None})
     if spin is not None or spin_rpm is not None:
@@ -493,8 +497,12 @@ def show(body: "Body | Configuration", folder: "os.PathLike[str] | str | None" =
     """The report (report(), the same keywords: spin rad/s, theta0 rad, ..., t_end s, map) shown
     inline in a notebook: a ReportView whose HTML is the report's page with its three.js view of
     the body moving in 3D, its plots and figures inlined (a few MB; works offline, in an iframe
-    `height` pixels tall). The folder is written to `folder`, or to a new temporary folder."""
+    `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or to a new
+    temporary folder; the title names the Configuration's file, else "A body given in Python"
+    (title= to choose)."""
     import tempfile
     folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
+    if "title" not in options and isinstance(body, Body) and body != _core.example_toy_top():
+        options["title"] = "A body given in Python"  # not the built-in example the default title names
     report(body, folder, **options)
     return ReportView(folder, height)

@@ -1113,7 +1113,11 @@ class ReportView:
         return path
 
     def _repr_html_(self) -> str:
-        return (f"<iframe srcdoc=\"{html.escape(self.html, quote=True)}\" style=\"width: 100%; height: {self.height}px; "
+        # In the notebook's frame, opened at the 3D view (the page's answer is above it).
+        scroll = ("<script>window.addEventListener('load', () => { const e = document.getElementById('scene'); "
+                  "if (e) e.scrollIntoView({block: 'center'}); });</script>")
+        page = self.html.replace("</body>", scroll + "</body>", 1) if "</body>" in self.html else self.html + scroll
+        return (f"<iframe srcdoc=\"{html.escape(page, quote=True)}\" style=\"width: 100%; height: {self.height}px; "
                 f"border: 1px solid #ddd\" sandbox=\"allow-scripts\"></iframe>")
 
     def __repr__(self) -> str:

@@ -76,3 +76,10 @@ def test_show_inlines_the_report_page_with_its_3d_view(tmp_path):
     frame = view._repr_html_()
     assert frame.startswith("<iframe srcdoc=\"") and "height: 720px" in frame and "&lt;h2" in frame
     assert view.save(str(tmp_path / "one.html")) and (tmp_path / "one.html").read_text() == page
+
+
+def test_report_titles(tmp_path):
+    heavytop.report(TOP, tmp_path / "a", spin=200.0, t_end=0.5, title="My top")
+    assert "<title>heavytop: My top: " in (tmp_path / "a" / "report.html").read_text()
+    other = heavytop.Body(4.35e-5, 4.5e-5, 1.2e-5, 0.06, 0.025)
+    assert "<title>heavytop: A body given in Python: " in heavytop.show(other, tmp_path / "b", spin=200.0, t_end=0.5).html
