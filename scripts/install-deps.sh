@@ -21,6 +21,8 @@ if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--peers" ]; then
     libginac-dev libcln-dev             # computer algebra for the symbolic target
     texlive-latex-base                  # pdflatex: the test that derive's LaTeX compiles
     python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+    python3-pandas                      # to_dataframe() (python/tests/test_notebook.py)
+    jupyter-nbconvert python3-ipykernel # the notebook test (examples/notebooks/tour.ipynb)
     python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
     libopenmpi-dev openmpi-bin          # heavytop-mpi: sweeps across the ranks of an MPI job (mpirun)
     strace                              # tests/startup.sh: what a command opens before its work

@@ -26,6 +26,30 @@ heavytop.InvalidInput (a ValueError) with a one-line "<key>: <rule>", the key be
 keyword argument's name ("rtol: must be a finite number in [1e-15, 1]", "t_end: ...") or, for
 the body and the motion, the configuration file's key ("body.A", "motion.spin").
 
+Functions (each a command of the command line; help(heavytop.NAME) for its units):
+
+    stability(body, spin)        does it stay up: the answer, each model's verdict    [stability]
+    simulate(body, model)        one model's motion as NumPy arrays                   [simulate]
+    compare(body)                every model against the nonlinear body               [compare]
+    sweep(body, vary)            a stability map over a grid of parameters            [sweep]
+    read_map(path)               a map `heavytop sweep --output` wrote                [sweep]
+    grid_values(start, stop, n)  the command line's START:STOP:COUNT grid            [--vary]
+    lifetime(body, spin=)        how long a damped top stays up                       [lifetime]
+    fit_decay(t, spin)           damping fitted to a measured spin decay              [fit-decay]
+    precession(body, tilt)       steady precessions at a tilt                         [precession]
+    body_from_parts(parts)       the Body that [[body.part]] tables make              [body]
+    body_report(parts)           the mass properties of parts                         [body]
+    load(path)                   a configuration file: body, motion, options          [--config]
+    report(body, folder)         the report folder                                    [report]
+    show(body)                   the report inline in a notebook: the body in 3D      [report]
+    derive(), derive_rotations(), derive_check()   the symbolic derivations           [derive]
+    rpm(x)                       rad/s of x rpm                                       [--spin-rpm]
+    example_toy_top(), example_motion()            the built-in example
+
+In a notebook every result shows itself (the answer first), and trajectories, comparisons,
+maps and lifetimes have .to_dataframe() (pandas) and .plot() (matplotlib, returns the figure);
+examples/notebooks/tour.ipynb is a tour.
+
     import heavytop
     top = heavytop.example_toy_top()
     heavytop.stability(top, 200.0).models["linearized"].critical_spin           # rad/s
@@ -34,11 +58,12 @@ the body and the motion, the configuration file's key ("body.A", "motion.spin").
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
-                   precession, read_map, rpm, simulate, stability, sweep)
+                   load, precession, read_map, report, rpm, show, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov, NormalForm,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
-                      StabilityMap, Trajectory, Wander, Answer)
+                      StabilityMap, Trajectory, Wander, Answer, BodyReport, Precession, SteadyPrecession,
+                      Configuration, ReportView)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
@@ -47,4 +72,5 @@ __all__ = [
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov", "NormalForm",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
+    "load", "report", "show", "ReportView", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
 ]

@@ -13,12 +13,12 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import Body
-from .results import (Comparison, DecayFit, Derivation, DerivationCheck, Lifetime, Rotations, Stability,
-                      StabilityMap, Trajectory)
+from .results import (BodyReport, Comparison, Configuration, ReportView, DecayFit, Derivation, DerivationCheck, Lifetime,
+                      Precession, Rotations, Stability, StabilityMap, Trajectory)
 from .results import SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
-           "body_report", "precession", "rpm", "lifetime", "fit_decay"]
+           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report", "show"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -301,7 +301,7 @@ def lifetime(body: Body, *, spin: float, theta0: float = 0.0, phi0: float = 0.0,
     """
     return Lifetime.from_json(_core.lifetime(body, spin=spin, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                              phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt, rtol=rtol,
-                                             atol=atol, max_steps=max_steps))
+                                             atol=atol, max_steps=max_steps), body=body, spin=spin)
 def rpm(value: float) -> float:
     """rad/s of a spin given in rpm (SPEC section 9): rpm(3000) == 100 pi. Every function taking
     a spin in rad/s takes rpm(x) for a spin of x rpm, exactly as the command line's --spin-rpm."""
@@ -352,35 +352,61 @@ def body_from_parts(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.
         folder   where a relative mesh path starts (default: the working folder)
 
     Bad parts raise InvalidInput naming the part as the command line does ("body.part[0].radius
-    (cone): must be a finite number > 0"); so does a general body (centre of mass off z, or z not
-    a principal axis), which no model integrates yet: body_report() describes it.
+    (cone): must be a finite number > 0"). Parts off the axis make SPEC section 11's general body
+    (the centre of mass off z, or z not a principal axis: body.general, .offset_x, .offset_y, .Ixy,
+    .Ixz, .Iyz), the tensor about the parts' own axes as `simulate --model nonlinear --config`
+    takes it: simulate(body, "nonlinear") integrates it, the other analyses refuse it.
     """
-    body = _assemble(parts, gravity, folder, False)[1]
-    assert body is not None  # a general body raised InvalidInput
+    body = _assemble(parts, gravity, folder, True)[1]
+    assert body is not None
     return body
 
 
-def body_report(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> Dict[str, Any]:
-    """json.loads of `heavytop body --format json` for these parts (see body_from_parts): {"A", "B",
+def body_report(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> BodyReport:
+    """The mass properties these parts make, a BodyReport (.A, .B, .C kg m^2, .mass kg, .length m,
+    .general) whose to_dict() is json.loads of `heavytop body --format json` (see body_from_parts): {"A", "B",
     "C" (kg m^2 about O), "mass" (kg), "length" (m), "gravity", "products": {"xy", "xz", "yz"} (kg m^2),
     "offset": {"x", "y"} (m), "principal_axis_tilt" (rad), "general" (bool), "parts": [{"name",
     "mass", "centre_of_mass", "inertia"}]}. A general body is reported, not refused."""
-    return _assemble(parts, gravity, folder, True)[0]
+    return BodyReport.from_json(_assemble(parts, gravity, folder, True)[0])
 
 
-def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None) -> Dict[str, Any]:
-    """Steady motions at a tilt: json.loads of `heavytop precession --tilt TILT --format json`.
+def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None) -> Precession:
+    """Steady motions at a tilt (rad), a Precession (.slow, .fast: each a SteadyPrecession with
+    .rate rad/s, .period s, .nutation_frequency rad/s, .state, or None; .min_spin rad/s) whose
+    to_dict() is json.loads of `heavytop precession --tilt TILT --format json`.
 
         body      Body (SI units)
         tilt      rad, the axis's angle from the upward vertical, in (0, pi)
         spin      rad/s, w3 = w.k (or spin_rpm in rpm; not both; default 0)
 
-    Returns {"body", "tilt", "spin", "steady_precession": {"slow", "fast" (each {"rate" rad/s,
+    to_dict() is {"body", "tilt", "spin", "steady_precession": {"slow", "fast" (each {"rate" rad/s,
     "period" s, "nutation_frequency" rad/s, "state": the SPEC section 2 state on it} or None),
     "min_spin" (rad/s or None), "slow_limit", "fast_limit"} (None for A != B),
     "permanent_rotations": [{"plane", "rate", "period", "stable", "eigenvalues", "state"}]}.
     """
-    return _core.precession(body, tilt, _spin(spin, spin_rpm))
+    return Precession.from_json(_core.precession(body, tilt, _spin(spin, spin_rpm)))
+
+
+def load(path: "os.PathLike[str] | str") -> Configuration:
+    """A configuration file (TOML, SPEC section 4), read by the command line's own reader:
+    a Configuration with .body (a Body: [body] or its [[body.part]], and [damping]; SI units),
+    .motion (the [motion] keys as simulate()'s keyword arguments: spin rad/s, theta0, phi0 rad,
+    theta_rate0, phi_rate0 rad/s; 0 where not given), .options (the further sections'
+    values, "simulate.t_end": 10.0) and .section(NAME).
+
+        cfg = heavytop.load("examples/toy-top.toml")
+        heavytop.stability(cfg.body, **cfg.motion)
+
+    Bad files raise InvalidInput with the command line's message for `--config FILE`, the
+    file's key first ("motion.spni: unknown key in FILE", "body.B: is required in [body], ..."),
+    or "path: cannot read 'FILE': no such file". A general body (SPEC section 11) is refused
+    as every analysis but `simulate --model nonlinear` refuses it.
+    """
+    path = os.fspath(path)
+    body, motion, options, given, from_parts = _core.load_configuration(path)
+    return Configuration(path=path, body=body, motion=dict(motion), options=dict(options), given=tuple(given),
+                         from_parts=bool(from_parts))
 
 
 def _spin(spin: Optional[float], spin_rpm: Optional[float]) -> float:
@@ -420,3 +446,65 @@ def fit_decay(t: npt.ArrayLike, spin: npt.ArrayLike, body: Optional[Body] = None
         error.result = fit  # type: ignore[attr-defined]
         raise error
     return fit
+
+
+def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, spin: Optional[float] = None,
+           spin_rpm: Optional[float] = None, theta0: Optional[float] = None, phi0: Optional[float] = None,
+           theta_rate0: Optional[float] = None, phi_rate0: Optional[float] = None, t_end: Optional[float] = None,
+           map: "os.PathLike[str] | str | None" = None,
+           slice: Optional[Tuple[str, SequenceOf[float]]] = None, title: Optional[str] = None) -> str:
+    """Writes the report folder of `heavytop report --output FOLDER` (SPEC section 5): report.html
+    (the answer first, the 3D view, the models, the motion), its figures (PNG, SVG, by gnuplot)
+    and data (CSV, JSON); returns the path of FOLDER/report.html.
+
+        body        a Body (SI units), or a Configuration from load(): its body, its motion (the
+                    keywords below override it) and its file named in the title, as --config
+        folder      where to write (created if needed)
+        spin, theta0, phi0, theta_rate0, phi_rate0
+                    rad/s, rad: the initial state (default 0, or the Configuration's); spin_rpm in rpm
+        t_end       s, > 0: the motion's horizon (None: up to the fall and a fifth more when it
+                    falls, else a few precession periods)                         [--t-end]
+        map         a sweep's file (CSV or HDF5, `heavytop sweep --output`) to draw   [--map]
+        slice       (KEY, [V1, ...]): a three-key map's heat maps hold KEY at its grid values
+                    nearest these (default: the last key at its first, middle, last)  [--slice]
+        title       the title's first words; None: the Configuration's file, else those of the
+                    command line without --config ("The built-in example, a wooden toy top")
+
+    Runs with the GIL released. Bad input raises InvalidInput naming the argument ("t_end: must
+    be finite and > 0", "map: ...", "slice: ..."); a figure gnuplot cannot draw raises RuntimeError.
+    """
+    source = ""
+    state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
+    if isinstance(body, Configuration):
+        source, state, body = body.path, dict(body.motion), body.body
+    if title is not None:
+        source = str(title)
+    given = {"theta0": theta0, "phi0": phi0, "theta_rate0": theta_rate0, "phi_rate0": phi_rate0}
+    state.update({k: v for k, v in given.items() if v is not None})
+    if spin is not None or spin_rpm is not None:
+        state["spin"] = _spin(spin, spin_rpm)
+    held, values = "", []
+    if slice is not None:
+        if isinstance(slice, str) or len(slice) != 2:
+            raise _invalid("slice", "must be (KEY, [V1, V2, ...])")
+        held, values = str(slice[0]), [float(v) for v in np.atleast_1d(slice[1])]
+    folder = os.fspath(folder)
+    _core.write_report(folder, body, state["spin"], state["theta0"], state["phi0"], state["theta_rate0"],
+                       state["phi_rate0"], t_end, "" if map is None else os.fspath(map), held, values, source)
+    return os.path.join(folder, "report.html")
+
+
+def show(body: "Body | Configuration", folder: "os.PathLike[str] | str | None" = None, *, height: int = 720,
+         **options: Any) -> ReportView:
+    """The report (report(), the same keywords: spin rad/s, theta0 rad, ..., t_end s, map) shown
+    inline in a notebook: a ReportView whose HTML is the report's page with its three.js view of
+    the body moving in 3D, its plots and figures inlined (a few MB; works offline, in an iframe
+    `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or to a new
+    temporary folder; the title names the Configuration's file, else "A body given in Python"
+    (title= to choose)."""
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
+    if "title" not in options and isinstance(body, Body) and body != _core.example_toy_top():
+        options["title"] = "A body given in Python"  # not the built-in example the default title names
+    report(body, folder, **options)
+    return ReportView(folder, height)

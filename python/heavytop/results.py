@@ -21,14 +21,18 @@ import numpy as np
 import numpy.typing as npt
 
 from ._core import Body
+from . import _views
 
 __all__ = [
     "JsonResult", "ModelStability", "Lyapunov", "Wander", "Answer", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
-    "StabilityMap", "FittedParameter", "DecayFit",
+    "StabilityMap", "FittedParameter", "DecayFit", "UNITS", "SteadyPrecession", "Precession", "BodyReport",
+    "Configuration", "ReportView",
 ]
 
 FloatArray = npt.NDArray[np.float64]
+#: The SI unit of every trajectory and map column by name ("tilt": "rad", "t": "s", ...).
+UNITS = _views.UNITS
 BoolArray = npt.NDArray[np.bool_]
 #: A matrix of expressions (strings), row by row.
 Matrix = Tuple[Tuple[str, ...], ...]
@@ -59,6 +63,10 @@ class JsonResult(Mapping[str, Any]):
 
     def _repr_pretty_(self, printer: Any, cycle: bool) -> None:  # IPython
         printer.text(repr(self))
+
+    def _repr_html_(self) -> str:
+        """A notebook's view: a compact table of the result's numbers (nested keys as "a.b")."""
+        return _views.html_table(("key", "value"), _views.flat_rows(self._data), caption=type(self).__name__)
 
 
 def _matrix(rows: Any) -> Matrix:
@@ -195,13 +203,83 @@ class Lifetime(JsonResult):
     horizon: float
     """s, the nonlinear run's horizon."""
     _data: Dict[str, Any] = field(repr=False)
+    body: Optional[Body] = field(default=None, repr=False)
+    """The body (with its damping) whose lifetime this is; None when not known (from_json alone)."""
+    spin: Optional[float] = field(default=None, repr=False)
+    """rad/s, the initial spin; None when not known."""
 
     @classmethod
-    def from_json(cls, data: Dict[str, Any]) -> "Lifetime":
+    def from_json(cls, data: Dict[str, Any], body: Optional[Body] = None,
+                  spin: Optional[float] = None) -> "Lifetime":
         decay, fall = data["spin_decay"], data["fall"]
         return cls(critical_spin=decay["critical_spin"], time_to_critical=decay["time_to_critical"],
                    fall_time=fall["time"], fall_spin=fall["spin"], max_tilt=fall["max_tilt"],
-                   horizon=data["horizon"], _data=data)
+                   horizon=data["horizon"], _data=data, body=body, spin=spin)
+
+    @property
+    def headline(self) -> str:
+        """One sentence: whether and when it falls (s) and when the spin reaches the critical spin."""
+        if self.fall_time is not None:
+            first = (f"Falls after {self.fall_time:.4g} s: the tilt passes {self.max_tilt:.4g} rad "
+                     f"({np.degrees(self.max_tilt):.3g}°)"
+                     + (f" with the spin at {self.fall_spin:.4g} rad/s." if self.fall_spin is not None else "."))
+        else:
+            first = f"Stays up for the horizon, {self.horizon:.4g} s (the tilt stays below {self.max_tilt:.4g} rad)."
+        if self.critical_spin is None:
+            return first + " No spin holds it up."
+        if self.time_to_critical is None:
+            return first + f" The spin never falls to the critical spin, {self.critical_spin:.4g} rad/s."
+        return first + f" The spin law reaches the critical spin, {self.critical_spin:.4g} rad/s, at {self.time_to_critical:.4g} s."
+
+    def spin_law(self, t: npt.ArrayLike) -> FloatArray:
+        """rad/s, the closed-form spin law C w' = -d_a w - tau0 sign(w) from the initial spin at times
+        t (s), 0 once dry friction stops it (a driven body keeps its spin). Needs .body and .spin
+        (lifetime() sets them)."""
+        if self.body is None or self.spin is None:
+            raise ValueError("spin_law: this Lifetime does not know its body and spin (lifetime() sets them)")
+        b = self.body
+        return _views.spin_law(np.asarray(t, dtype=np.float64), self.spin, b.C, b.axial_damping, b.friction, b.driven)
+
+    def to_dataframe(self) -> Any:
+        """A one-row pandas DataFrame: critical_spin (rad/s), time_to_critical (s), fall_time (s),
+        fall_spin (rad/s), max_tilt (rad), horizon (s); None as NaN."""
+        import pandas as pd
+        row = {"critical_spin": self.critical_spin, "time_to_critical": self.time_to_critical,
+               "fall_time": self.fall_time, "fall_spin": self.fall_spin, "max_tilt": self.max_tilt,
+               "horizon": self.horizon}
+        return pd.DataFrame([{k: (np.nan if v is None else float(v)) for k, v in row.items()}])
+
+    def plot(self, samples: int = 400) -> Any:
+        """The spin law over the run (rad/s against s) with the critical spin and the fall marked;
+        returns the matplotlib Figure. Needs .body and .spin (lifetime() sets them)."""
+        end = max(1.1 * (self.fall_time or 0.0), 1.2 * (self.time_to_critical or 0.0))
+        end = min(end, self.horizon) if end > 0 else self.horizon
+        t = np.linspace(0.0, end, samples)
+        figure, (ax,) = _views.new_figure(1)
+        ax.plot(t, self.spin_law(t), lw=1.5, label="spin law C w' = -d_a w - tau0 sign(w)")
+        if self.critical_spin is not None:
+            ax.axhline(self.critical_spin, color="#c62828", ls="--", lw=1, label=f"critical spin {self.critical_spin:.4g} rad/s")
+        if self.time_to_critical:
+            ax.axvline(self.time_to_critical, color="#c62828", ls=":", lw=1, label=f"reaches it at {self.time_to_critical:.4g} s")
+        if self.fall_time is not None:
+            ax.axvline(self.fall_time, color="black", lw=1.2, label=f"falls at {self.fall_time:.4g} s")
+        ax.set_xlabel(_views.label("t"))
+        ax.set_ylabel(_views.label("spin"))
+        ax.set_ylim(bottom=0)
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="lower left", fontsize="small")
+        ax.set_title("How long it stays up")
+        return figure
+
+    def __repr__(self) -> str:
+        return self.headline
+
+    def _repr_html_(self) -> str:
+        f = _views.fmt
+        rows = (("critical spin", f(self.critical_spin, "rad/s")), ("time to critical", f(self.time_to_critical, "s")),
+                ("fall time", f(self.fall_time, "s")), ("spin at the fall", f(self.fall_spin, "rad/s")),
+                ("max tilt", f(self.max_tilt, "rad")), ("horizon", f(self.horizon, "s")))
+        return f"<p>{html.escape(self.headline)}</p>" + _views.html_table(("", "value"), rows)
 
 
 @dataclass(frozen=True, eq=False)
@@ -359,6 +437,77 @@ class Comparison(JsonResult):
     def from_json(cls, data: Dict[str, Any]) -> "Comparison":
         return cls(nonlinear=NonlinearReference.from_json(data["nonlinear"]),
                    models={name: ModelComparison.from_json(m) for name, m in data["models"].items()}, _data=data)
+
+    _FRAME_COLUMNS = ("nutation_frequency", "precession_rate", "max_angle_error", "final_angle_error",
+                      "nutation_relative_error", "precession_relative_error", "diverged_at")
+
+    def to_dataframe(self) -> Any:
+        """A pandas DataFrame, one row per model ("nonlinear", the truth, first), indexed by the
+        model's name: nutation_frequency, precession_rate (rad/s), max_angle_error,
+        final_angle_error (rad), nutation_relative_error, precession_relative_error (1),
+        diverged_at (s); None as NaN (the truth has no errors)."""
+        import pandas as pd
+        rows = {"nonlinear": {"nutation_frequency": self.nonlinear.nutation_frequency,
+                              "precession_rate": self.nonlinear.precession_rate}}
+        rows.update({name: {c: getattr(m, c) for c in self._FRAME_COLUMNS} for name, m in self.models.items()})
+        frame = pd.DataFrame.from_dict(rows, orient="index", columns=list(self._FRAME_COLUMNS), dtype=float)
+        frame.index.name = "model"
+        return frame
+
+    def plot(self) -> Any:
+        """Bars, one per approximate model: its largest angle error (rad, log scale) and its
+        nutation and precession frequencies' relative errors against the nonlinear body;
+        returns the matplotlib Figure."""
+        figure, axes = _views.new_figure(2, height=2.4)
+        names = list(self.models)
+        x = np.arange(len(names))
+        errors = [m.max_angle_error for m in self.models.values()]
+        axes[0].bar(x, errors, color="#1f77b4")
+        axes[0].set_yscale("log")
+        axes[0].set_ylabel("max angle error (rad)")
+        axes[0].set_title("Each model against the nonlinear body")
+        for i, m in enumerate(self.models.values()):
+            if m.diverged_at is not None:
+                axes[0].annotate(f"diverged at {m.diverged_at:.3g} s", (i, errors[i]), ha="center", va="bottom",
+                                 fontsize="small")
+        width = 0.38
+        nut = [np.nan if m.nutation_relative_error is None else m.nutation_relative_error for m in self.models.values()]
+        pre = [np.nan if m.precession_relative_error is None else m.precession_relative_error for m in self.models.values()]
+        axes[1].bar(x - width / 2, nut, width, label="nutation frequency")
+        axes[1].bar(x + width / 2, pre, width, label="precession rate")
+        if np.any(np.array(nut + pre) > 0):
+            axes[1].set_yscale("log")
+        axes[1].set_ylabel("relative error (1)")
+        axes[1].legend(fontsize="small")
+        for ax in axes:
+            ax.set_xticks(x, names)
+            ax.grid(True, axis="y", alpha=0.3)
+        return figure
+
+    def __repr__(self) -> str:
+        lines = [f"nonlinear body: nutation {_views.fmt(self.nonlinear.nutation_frequency, 'rad/s')}, "
+                 f"precession {_views.fmt(self.nonlinear.precession_rate, 'rad/s')}", "",
+                 f"{'model':<16} {'max angle error':<20} {'nutation error':<16} precession error"]
+        for name, m in self.models.items():
+            lines.append(f"{name:<16} {_views.fmt(m.max_angle_error, 'rad'):<20} "
+                         f"{_views.fmt(m.nutation_relative_error):<16} {_views.fmt(m.precession_relative_error)}"
+                         + (f"  (diverged at {m.diverged_at:.4g} s)" if m.diverged_at is not None else ""))
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        f = _views.fmt
+        # lagrange-exact is the nonlinear motion in closed form: the closest of the approximations.
+        approximate = {n: m for n, m in self.models.items() if n != "lagrange-exact"} or self.models
+        best = min(approximate.items(), key=lambda item: item[1].max_angle_error)[0]
+        head = (f"<p>Closest to the nonlinear body: <b>{html.escape(best)}</b> (max angle error "
+                f"{html.escape(f(self.models[best].max_angle_error, 'rad'))}). The nonlinear body nutates at "
+                f"{html.escape(f(self.nonlinear.nutation_frequency, 'rad/s'))} and precesses at "
+                f"{html.escape(f(self.nonlinear.precession_rate, 'rad/s'))}.</p>")
+        rows = [(name, f(m.max_angle_error, "rad"), f(m.nutation_frequency, "rad/s"), f(m.precession_rate, "rad/s"),
+                 f(m.nutation_relative_error), f(m.precession_relative_error), f(m.diverged_at, "s"))
+                for name, m in self.models.items()]
+        return head + _views.html_table(("model", "max angle error", "nutation", "precession", "nutation rel. error",
+                                         "precession rel. error", "diverged at"), rows)
 
 
 # ---- derive ----------------------------------------------------------------------------------
@@ -551,6 +700,38 @@ class DecayFit(JsonResult):
                    stop_time=data["stop_time"], termination=data["termination"], warnings=tuple(data["warnings"]),
                    _data=data)
 
+    def spin_law(self, t: npt.ArrayLike) -> FloatArray:
+        """rad/s, the fitted law C w' = -d_a w - tau0 sign(w) from spin0 at times t (s), 0 once the
+        friction has stopped it: the curve the residuals are measured from."""
+        return _views.spin_law(np.asarray(t, dtype=np.float64), self.spin0.value, self.C, self.axial.value,
+                               self.friction.value, False)
+
+    def _repr_html_(self) -> str:
+        def pm(p: FittedParameter, unit: str) -> str:
+            spread = "" if p.uncertainty is None else f" ± {p.uncertainty:.2g}"
+            return f"{p.value:.4g}{spread} {unit}" + (" (at its bound)" if p.at_bound else "")
+        head = (f"<p>Fitted: axial damping d_a = {html.escape(pm(self.axial, 'N m s'))}, dry friction tau0 = "
+                f"{html.escape(pm(self.friction, 'N m'))}, spin at t = 0 {html.escape(pm(self.spin0, 'rad/s'))}; "
+                f"rms residual {self.rms_residual:.3g} rad/s over {self.points} points."
+                + "".join(f"<br>⚠ {html.escape(w)}" for w in self.warnings) + "</p>")
+        return head + JsonResult._repr_html_(self)
+
+    def plot(self, t: npt.ArrayLike, spin: npt.ArrayLike) -> Any:
+        """The measured points (t in s, spin in rad/s) and the fitted law through them; returns the
+        matplotlib Figure."""
+        t = np.asarray(t, dtype=np.float64)
+        figure, (ax,) = _views.new_figure(1)
+        ax.plot(t, np.asarray(spin, dtype=np.float64), ".", ms=4, label="measured")
+        fine = np.linspace(0.0, float(np.max(t)), 500)
+        ax.plot(fine, self.spin_law(fine), lw=1.5,
+                label=f"fit: d_a = {self.axial.value:.3g} N m s, tau0 = {self.friction.value:.3g} N m")
+        ax.set_xlabel(_views.label("t"))
+        ax.set_ylabel(_views.label("spin"))
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="small")
+        ax.set_title(f"Spin decay fitted (rms residual {self.rms_residual:.3g} rad/s)")
+        return figure
+
 
 def _column(name: str, doc: str) -> property:
     def get(self: "Trajectory") -> FloatArray:
@@ -637,6 +818,44 @@ class Trajectory(_Columns):
         return (f"Trajectory(model={self._model!r}, samples={len(self._columns['t'])}, "
                 f"columns={self.columns!r}, summary={self._summary.report!r})")
 
+    def to_dataframe(self) -> Any:
+        """A pandas DataFrame of every column, in the CSV's order (t in s, angles in rad, rates in
+        rad/s; the units of each column in heavytop.results.UNITS), one row per sample."""
+        return _views.dataframe(self._columns)
+
+    def to_records(self) -> npt.NDArray[np.void]:
+        """A NumPy structured array, one record per sample, one float64 field per column in the
+        CSV's order: r["tilt"], r[0]["t"] (copies of the columns)."""
+        return _views.records(self._columns)
+
+    def plot(self, columns: Tuple[str, ...] = ("tilt", "azimuth")) -> Any:
+        """One panel per column against t (s), with matplotlib; angles (theta, phi, tilt, azimuth)
+        in degrees with a second axis in rad, the others in their SI unit. Returns the Figure
+        (a notebook shows it). Raises ValueError naming an unknown column."""
+        if isinstance(columns, str):
+            columns = (columns,)
+        for name in columns:
+            if name not in self._columns or name == "t":
+                raise ValueError(f"plot: a {self._model} trajectory has no column {name!r} to plot "
+                                 f"(its columns: {', '.join(self.columns[1:])})")
+        return _views.plot_columns(self._columns["t"], self._columns, tuple(columns), f"{self._model} model")
+
+    def _repr_html_(self) -> str:
+        t, tilt = self._columns["t"], self._columns["tilt"]
+        top = int(np.argmax(tilt))
+        head = (f"<p>{html.escape(self._model)} model, {len(t)} samples over {t[-1]:.4g} s: the tilt from the vertical "
+                f"goes from {np.degrees(tilt[0]):.3g}° to at most {np.degrees(tilt[top]):.3g}° "
+                f"({tilt[top]:.3g} rad, at {t[top]:.4g} s).</p>")
+        columns = list(self._columns)
+        picks = sorted(set([0, 1, 2, len(t) // 2, len(t) - 2, len(t) - 1]) & set(range(len(t))))
+        rows = []
+        for i, k in enumerate(picks):
+            if i and k - picks[i - 1] > 1:
+                rows.append(["…"] * len(columns))
+            rows.append([f"{self._columns[c][k]:.6g}" for c in columns])
+        header = [_views.label(c) for c in columns]
+        return head + _views.html_table(header, rows) + f"<p style='font-size: .85em'>{html.escape(self._summary.report)}</p>"
+
 
 # ---- sweep -----------------------------------------------------------------------------------
 
@@ -703,22 +922,235 @@ class StabilityMap(_Columns):
 
     def plot(self, name: str = "linearized", ax: Any = None) -> Any:
         """A heat map of column `name` (stable in colour, unstable grey) over a two-parameter map
-        (a three-parameter map's slice()), the first key across, with matplotlib; returns the
-        Axes. Raises ValueError unless the map has two keys."""
+        (a three-parameter map's slice()), the first key across, each axis labelled with its unit,
+        with matplotlib, into `ax` or a new Figure; returns the Axes (.figure is the Figure).
+        Raises ValueError unless the map has two keys."""
         if len(self._shape) != 2:
             raise ValueError(f"plot: a heat map needs two varied keys, this map has {len(self._shape)} (take a slice())")
-        import matplotlib.pyplot as plt
         from matplotlib.colors import ListedColormap
-        if ax is None:
-            ax = plt.figure().add_subplot()
+        if ax is None:  # a Figure of its own, outside pyplot's state (a notebook shows it once)
+            ax = _views.new_figure(1, height=4.0)[1][0]
         first, second = list(self.parameters)
         x, y = self.grid(first)[:, 0], self.grid(second)[0, :]
         ax.pcolormesh(x, y, self.grid(name).T.astype(float), cmap=ListedColormap(["#d9d9d9", "#2ca02c"]),
                       vmin=0, vmax=1, shading="nearest")
-        ax.set_xlabel(first)
-        ax.set_ylabel(second)
+        ax.set_xlabel(_views.label(first))
+        ax.set_ylabel(_views.label(second))
         ax.set_title(f"{name}: stable (green) or not (grey)")
         return ax
 
     def __repr__(self) -> str:
         return f"StabilityMap(shape={self._shape!r}, columns={self.columns!r})"
+
+    def to_dataframe(self) -> Any:
+        """A pandas DataFrame, one row per grid point in the CSV's order (the first key slowest):
+        the varied keys' values (SI units), a bool column per model, lyapunov_certificate."""
+        return _views.dataframe(self._columns)
+
+    def _repr_html_(self) -> str:
+        keys = self.parameters
+        ranges = ", ".join(f"{html.escape(_views.label(k))} {np.min(v):.4g} to {np.max(v):.4g} ({n} values)"
+                           for (k, v), n in zip(keys.items(), self._shape))
+        total = int(np.prod(self._shape))
+        rows = [(name, f"{int(np.count_nonzero(v))} of {total}", f"{100.0 * np.count_nonzero(v) / max(total, 1):.1f}%")
+                for name, v in self.verdicts.items()]
+        return (f"<p>A stability map over {ranges}.</p>"
+                + _views.html_table(("model", "stable points", "share"), rows))
+
+
+# ---- precession, body, load ------------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class SteadyPrecession(JsonResult):
+    """One steady precession of a symmetric top at a tilt (SPEC section 12's "slow" or "fast")."""
+
+    rate: float
+    """rad/s, the precession rate W (the axis turns about the vertical at W)."""
+    period: float
+    """s, 2 pi / |W|."""
+    nutation_frequency: float
+    """rad/s, the frequency of small nutations about it."""
+    state: Dict[str, float]
+    """The SPEC section 2 state on it (spin, theta0, phi0, theta_rate0, phi_rate0): simulate(body, **state)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "SteadyPrecession":
+        return cls(rate=data["rate"], period=data["period"], nutation_frequency=data["nutation_frequency"],
+                   state=dict(data["state"]), _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class Precession(JsonResult):
+    """Steady motions at a tilt: `heavytop precession --tilt TILT --format json` (``to_dict()``)."""
+
+    tilt: float
+    """rad, the axis's angle from the upward vertical."""
+    spin: float
+    """rad/s, w3 = w.k."""
+    slow: Optional[SteadyPrecession]
+    """The slow steady precession; None when there is none (or A != B)."""
+    fast: Optional[SteadyPrecession]
+    """The fast steady precession; None when there is none (or A != B)."""
+    min_spin: Optional[float]
+    """rad/s, the least spin with a steady precession at this tilt (None for A != B)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "Precession":
+        steady = data.get("steady_precession") or {}
+        def one(name: str) -> Optional[SteadyPrecession]:
+            value = steady.get(name)
+            return None if value is None else SteadyPrecession.from_json(value)
+        return cls(tilt=data["tilt"], spin=data["spin"], slow=one("slow"), fast=one("fast"),
+                   min_spin=steady.get("min_spin"), _data=data)
+
+    def __repr__(self) -> str:
+        f = _views.fmt
+        lines = [f"At tilt {self.tilt:.4g} rad ({np.degrees(self.tilt):.3g}°), spin {self.spin:.6g} rad/s:"]
+        for name, p in (("slow", self.slow), ("fast", self.fast)):
+            lines.append(f"  {name}: " + ("none" if p is None else
+                         f"precession {f(p.rate, 'rad/s')} (period {f(p.period, 's')}), nutation {f(p.nutation_frequency, 'rad/s')}"))
+        lines.append(f"  least spin for a steady precession: {f(self.min_spin, 'rad/s')}")
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        f = _views.fmt
+        rows = [(name, "none", "", "") if p is None else
+                (name, f(p.rate, "rad/s"), f(p.period, "s"), f(p.nutation_frequency, "rad/s"))
+                for name, p in (("slow", self.slow), ("fast", self.fast))]
+        return (f"<p>{html.escape(repr(self).splitlines()[0])} least spin for a steady precession "
+                f"{html.escape(f(self.min_spin, 'rad/s'))}.</p>"
+                + _views.html_table(("precession", "rate", "period", "nutation"), rows))
+
+
+@dataclass(frozen=True, eq=False)
+class BodyReport(JsonResult):
+    """A body's mass properties: `heavytop body --format json` (``to_dict()``)."""
+
+    A: float
+    """kg m^2, about body x through O."""
+    B: float
+    """kg m^2, about body y through O."""
+    C: float
+    """kg m^2, about the spin axis z through O."""
+    mass: float
+    """kg."""
+    length: float
+    """m, the centre of mass's height along z above O."""
+    general: bool
+    """True for SPEC section 11's general body (centre of mass off z, or z not a principal axis)."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "BodyReport":
+        return cls(A=data["A"], B=data["B"], C=data["C"], mass=data["mass"], length=data["length"],
+                   general=bool(data.get("general", False)), _data=data)
+
+    def __repr__(self) -> str:
+        return (f"BodyReport(A={self.A!r}, B={self.B!r}, C={self.C!r}, mass={self.mass!r}, length={self.length!r}, "
+                f"general={self.general!r}, parts={len(self._data.get('parts', []))})")
+
+    def _repr_html_(self) -> str:
+        f, d = _views.fmt, self._data
+        kind = ("a general body (SPEC section 11: the centre of mass off z, or z not a principal axis)"
+                if self.general else "z a principal axis with the centre of mass on it")
+        head = (f"<p>{self.mass * 1e3:.4g} g, the centre of mass {self.length * 1e3:.4g} mm above O along z; "
+                f"{html.escape(kind)}.</p>")
+        rows = [("A", f(self.A, "kg m^2")), ("B", f(self.B, "kg m^2")), ("C", f(self.C, "kg m^2")),
+                ("mass", f(self.mass, "kg")), ("length", f(self.length, "m")), ("gravity", f(d.get("gravity"), "m/s^2"))]
+        if self.general:
+            rows += [(f"products.{k}", f(v, "kg m^2")) for k, v in d.get("products", {}).items()]
+            rows += [(f"offset.{k}", f(v, "m")) for k, v in d.get("offset", {}).items()]
+        table = _views.html_table(("", "value"), rows)
+        parts = d.get("parts") or []
+        if parts:
+            table += _views.html_table(("part", "mass", "centre of mass z"),
+                                       [(p.get("name", ""), f(p.get("mass"), "kg"),
+                                         f((p.get("centre_of_mass") or [None] * 3)[2], "m")) for p in parts])
+        return head + table
+
+
+@dataclass(frozen=True, eq=False)
+class Configuration:
+    """A configuration file read by heavytop.load(): the body, the motion and the other sections'
+    options, as the command line reads them (``--config FILE``)."""
+
+    path: str
+    """The file read."""
+    body: Body
+    """The body of [body] (its moments, or those its [[body.part]] make), with [damping]."""
+    motion: Dict[str, float]
+    """[motion]: spin (rad/s), theta0, phi0 (rad), theta_rate0, phi_rate0 (rad/s); 0 where not given
+    (spin_rpm read as spin in rad/s): simulate(cfg.body, **cfg.motion)."""
+    options: Dict[str, Any]
+    """The further sections' values by "section.key" ("simulate.t_end": 10.0), as TOML typed them."""
+    given: Tuple[str, ...]
+    """The body and motion keys the file gives ("body.A", "motion.spin", ...)."""
+    from_parts: bool
+    """True when [[body.part]] describe the body."""
+
+    def section(self, name: str) -> Dict[str, Any]:
+        """The options of section `name` by key: cfg.section("simulate") == {"t_end": 10.0, ...}."""
+        prefix = name + "."
+        return {k[len(prefix):]: v for k, v in self.options.items() if k.startswith(prefix)}
+
+    def _repr_html_(self) -> str:
+        rows = [("body", repr(self.body))] + [(f"motion.{k}", _views.fmt(v)) for k, v in self.motion.items()]
+        rows += [(k, _views.fmt(v)) for k, v in self.options.items()]
+        return _views.html_table(("key", "value"), rows, caption=self.path)
+
+
+class ReportView:
+    """The report's page (report.html of `heavytop report`) as one self-contained HTML document:
+    its scripts (the three.js bundle heavytop-report.js and its data report-data.js) and figures
+    inlined, so that a notebook shows it, the body moving in 3D included, offline, in an iframe.
+    show() makes it; .folder is the report folder it was read from."""
+
+    __slots__ = ("folder", "html", "height")
+
+    def __init__(self, folder: str, height: int = 720) -> None:
+        import base64
+        import os
+        import re
+        self.folder = folder
+        self.height = int(height)
+        with open(os.path.join(folder, "report.html"), encoding="utf-8") as f:
+            page = f.read()
+
+        def script(name: str) -> str:
+            path = os.path.join(folder, name)
+            if not os.path.exists(path):
+                return ""
+            with open(path, encoding="utf-8") as f:
+                return "<script>" + f.read().replace("</script", "<\\/script") + "</script>"
+
+        page = page.replace("<script src='report-data.js'></script>", script("report-data.js"))
+        bundle = script("heavytop-report.js")  # deferred in the page: it runs once the body is parsed
+        page = page.replace("<script src='heavytop-report.js' defer></script>", "")
+        page = page.replace("</body>", bundle + "</body>") if bundle else page
+
+        def image(match: "re.Match[str]") -> str:
+            name = match.group(1)
+            with open(os.path.join(folder, name), "rb") as f:
+                data = base64.b64encode(f.read()).decode("ascii")
+            kind = "image/svg+xml" if name.endswith(".svg") else "image/png"
+            return f"src='data:{kind};base64,{data}'"
+        self.html = re.sub(r"src='([A-Za-z0-9_.-]+\.(?:svg|png))'", image, page)
+
+    def save(self, path: str) -> str:
+        """Writes the self-contained page to `path` (one file, opens offline); returns path."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.html)
+        return path
+
+    def _repr_html_(self) -> str:
+        # In the notebook's frame, opened at the 3D view (the page's answer is above it).
+        scroll = ("<script>window.addEventListener('load', () => { const e = document.getElementById('scene'); "
+                  "if (e) e.scrollIntoView({block: 'center'}); });</script>")
+        page = self.html.replace("</body>", scroll + "</body>", 1) if "</body>" in self.html else self.html + scroll
+        return (f"<iframe srcdoc=\"{html.escape(page, quote=True)}\" style=\"width: 100%; height: {self.height}px; "
+                f"border: 1px solid #ddd\" sandbox=\"allow-scripts\"></iframe>")
+
+    def __repr__(self) -> str:
+        return f"ReportView(folder={self.folder!r}, {len(self.html)} characters)"

@@ -43,5 +43,7 @@ void bind_sweep(py::module_& m);
 void bind_derive(py::module_& m);
 void bind_parts(py::module_& m);
 void bind_fit_decay(py::module_& m);
+void bind_config(py::module_& m);
+void bind_report(py::module_& m);
 
 }  // namespace heavytop::python

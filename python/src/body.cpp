@@ -1,4 +1,7 @@
 // heavytop.Body and the built-in example.
+#include <string>
+#include <utility>
+
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
@@ -14,17 +17,32 @@ using namespace pybind11::literals;
 namespace {
 
 Body make_body(double A, double B, double C, double mass, double length, double gravity, double transverse_damping,
-               double axial_damping, double friction, bool driven) {
+               double axial_damping, double friction, bool driven, double offset_x, double offset_y, double Ixy,
+               double Ixz, double Iyz) {
   const Body body{.A = A, .B = B, .C = C, .mass = mass, .gravity = gravity, .length = length,
                   .damping = {.transverse = transverse_damping, .axial = axial_damping, .friction = friction,
-                              .driven = driven}};
+                              .driven = driven},
+                  .general = {.Ixy = Ixy, .Ixz = Ixz, .Iyz = Iyz, .offset_x = offset_x, .offset_y = offset_y}};
   validate(body);
   return body;
 }
 
 py::tuple state_of(const Body& b) {
+  const GeneralInertia& g = b.general;
   return py::make_tuple(b.A, b.B, b.C, b.mass, b.length, b.gravity, b.damping.transverse, b.damping.axial,
-                        b.damping.friction, b.damping.driven);
+                        b.damping.friction, b.damping.driven, g.offset_x, g.offset_y, g.Ixy, g.Ixz, g.Iyz);
+}
+
+// The general body's keyword arguments (SPEC section 11), after those of docs::kBodyInit.
+const std::string& init_doc() {
+  static const std::string doc = std::string(docs::kBodyInit) +
+      "\noffset_x, offset_y: m (default 0), the centre of mass's x and y in the body axes: the centre of mass\n"
+      "        is (offset_x, offset_y, length)\n"
+      "Ixy, Ixz, Iyz: kg m^2 (default 0), the products of inertia about O in the body axes (the tensor\n"
+      "        [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]], positive definite)\n"
+      "A body with any of these nonzero is SPEC section 11's general body: simulate(body, \"nonlinear\")\n"
+      "integrates it (integrator \"auto\" or \"dopri5\"); every other analysis refuses it (InvalidInput).";
+  return doc;
 }
 
 }  // namespace
@@ -33,7 +51,7 @@ void bind_body(py::module_& m) {
   py::class_<Body>(m, "Body", docs::kBody)
       .def(py::init(&make_body), "A"_a, "B"_a, "C"_a, "mass"_a, "length"_a, "gravity"_a = 9.81, py::kw_only(),
            "transverse_damping"_a = 0.0, "axial_damping"_a = 0.0, "friction"_a = 0.0, "driven"_a = false,
-           docs::kBodyInit)
+           "offset_x"_a = 0.0, "offset_y"_a = 0.0, "Ixy"_a = 0.0, "Ixz"_a = 0.0, "Iyz"_a = 0.0, init_doc().c_str())
       .def_readonly("A", &Body::A, "kg m^2, moment of inertia about body x through O")
       .def_readonly("B", &Body::B, "kg m^2, moment of inertia about body y through O")
       .def_readonly("C", &Body::C, "kg m^2, moment of inertia about the spin axis z through O")
@@ -49,10 +67,31 @@ void bind_body(py::module_& m) {
                              "N m, tau0: the dry friction torque -tau0 sign(w.k) k at the tip")
       .def_property_readonly("driven", [](const Body& b) { return b.damping.driven; },
                              "True: a motor holds the spin w.k at its value at t = 0")
+      .def_property_readonly("offset_x", [](const Body& b) { return b.general.offset_x; },
+                             "m, the centre of mass's x in the body axes (SPEC section 11; 0: on the z axis)")
+      .def_property_readonly("offset_y", [](const Body& b) { return b.general.offset_y; },
+                             "m, the centre of mass's y in the body axes (SPEC section 11)")
+      .def_property_readonly("Ixy", [](const Body& b) { return b.general.Ixy; },
+                             "kg m^2, the product of inertia integral of x y dm about O (SPEC section 11)")
+      .def_property_readonly("Ixz", [](const Body& b) { return b.general.Ixz; },
+                             "kg m^2, the product of inertia integral of x z dm about O (SPEC section 11)")
+      .def_property_readonly("Iyz", [](const Body& b) { return b.general.Iyz; },
+                             "kg m^2, the product of inertia integral of y z dm about O (SPEC section 11)")
+      .def_property_readonly("general", [](const Body& b) { return is_general(b); },
+                             "True for SPEC section 11's general body (an offset or a product of inertia nonzero)")
       .def("to_dict", [](const Body& b) {
-             return py::dict("A"_a = b.A, "B"_a = b.B, "C"_a = b.C, "mass"_a = b.mass, "gravity"_a = b.gravity,
-                             "length"_a = b.length);
-           }, "The body as the JSON outputs' \"body\" object: {A, B, C, mass, gravity, length}.")
+             py::dict d("A"_a = b.A, "B"_a = b.B, "C"_a = b.C, "mass"_a = b.mass, "gravity"_a = b.gravity,
+                        "length"_a = b.length);
+             if (is_general(b)) {
+               d["offset_x"] = b.general.offset_x;
+               d["offset_y"] = b.general.offset_y;
+               d["Ixy"] = b.general.Ixy;
+               d["Ixz"] = b.general.Ixz;
+               d["Iyz"] = b.general.Iyz;
+             }
+             return d;
+           }, "The body as the JSON outputs' \"body\" object: {A, B, C, mass, gravity, length}, and for a general\n"
+              "body (SPEC section 11) offset_x, offset_y, Ixy, Ixz, Iyz.")
       .def("__eq__", [](const Body& a, const Body& b) {
              return state_of(a).equal(state_of(b));
            }, py::is_operator())
@@ -63,13 +102,20 @@ void bind_body(py::module_& m) {
              if (b.damping.axial) damping += fmt::format(", axial_damping={}", b.damping.axial);
              if (b.damping.friction) damping += fmt::format(", friction={}", b.damping.friction);
              if (b.damping.driven) damping += ", driven=True";
+             const GeneralInertia& g = b.general;
+             for (const auto& [name, value] : {std::pair{"offset_x", g.offset_x}, std::pair{"offset_y", g.offset_y},
+                                               std::pair{"Ixy", g.Ixy}, std::pair{"Ixz", g.Ixz}, std::pair{"Iyz", g.Iyz}})
+               if (value != 0.0) damping += fmt::format(", {}={}", name, value);
              return fmt::format("heavytop.Body(A={}, B={}, C={}, mass={}, length={}, gravity={}{})", b.A, b.B, b.C,
                                 b.mass, b.length, b.gravity, damping);
            })
       .def(py::pickle(&state_of, [](const py::tuple& t) {
+        // 10 items: a pickle made before the general body's terms (all 0).
+        const auto general = [&](std::size_t i) { return t.size() > i ? t[i].cast<double>() : 0.0; };
         return make_body(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>(),
                          t[4].cast<double>(), t[5].cast<double>(), t[6].cast<double>(), t[7].cast<double>(),
-                         t[8].cast<double>(), t[9].cast<bool>());
+                         t[8].cast<double>(), t[9].cast<bool>(), general(10), general(11), general(12), general(13),
+                         general(14));
       }));
 
   m.def("example_toy_top", &example_toy_top, docs::kExampleToyTop);

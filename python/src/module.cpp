@@ -44,4 +44,6 @@ PYBIND11_MODULE(_core, m) {
   bind_derive(m);
   bind_parts(m);
   bind_fit_decay(m);
+  bind_config(m);
+  bind_report(m);
 }

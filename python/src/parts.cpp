@@ -19,21 +19,27 @@ namespace {
 
 // `text` is a configuration holding [[body.part]] tables (heavytop._api writes it from the
 // parts' dicts), read by the configuration's own parser so that Python checks what the file does.
-// A general body is refused as the command line refuses it unless `allow_general` (then the
-// Body is None).
+// A general body is refused as the command line's analyses refuse it unless `allow_general`
+// (then the Body holds SPEC section 11's terms, as `simulate --model nonlinear` takes it).
 py::tuple assemble_parts(const std::string& text, const std::string& source, double gravity, bool allow_general) {
   const io::Configuration config = io::parse_configuration(text, source, "parts");
   if (config.parts.empty()) throw InvalidInput("parts", "give at least one part");
   const io::AssembledBody assembled = io::assemble_parts(config.parts);
   Body body;
   body.gravity = gravity;
-  py::object made = py::none();
   if (!allow_general || !assembled.assembly.general()) {
     body = body_of(assembled.assembly, gravity, assembled.names);
-    validate(body);
-    made = py::cast(body);
+  } else {  // as `simulate --model nonlinear --config` makes it: the tensor about the body axes as it is
+    const BodyAssembly& a = assembled.assembly;
+    body.A = a.A;
+    body.B = a.B;
+    body.C = a.C;
+    body.mass = a.total.mass;
+    body.length = a.length;
+    body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
   }
-  return py::make_tuple(from_json(io::body_json(assembled, gravity)), made);
+  validate(body);
+  return py::make_tuple(from_json(io::body_json(assembled, gravity)), py::cast(body));
 }
 
 py::object precession(const Body& body, double tilt, double spin) {

@@ -57,7 +57,7 @@ def test_a_slice_draws_as_a_heat_map_of_its_verdicts(map_files):
     ax = sliced.plot("nonlinear")
     drawn = np.asarray(ax.collections[0].get_array()).reshape(6, 7)  # spin up, B/A across
     assert np.array_equal(drawn, sliced.grid("nonlinear").T.astype(float))
-    assert ax.get_xlabel() == "B/A" and ax.get_ylabel() == "spin"
+    assert ax.get_xlabel() == "B/A (dimensionless)" and ax.get_ylabel() == "spin (rad/s)"  # units on every axis (issue 28)
     with pytest.raises(ValueError, match="needs two varied keys"):
         heavytop.read_map(map_files / "map.csv").plot("nonlinear")
 
