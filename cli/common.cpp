@@ -171,6 +171,7 @@ void Inputs::resolve(bool allow_general) {
     else from_example.push_back(key);
   }
   InitialState state = described ? InitialState{} : example_motion();
+  builtin_example_ = !described;
   if (config_path_.empty() && from_example.size() == std::size(kDescribingKeys)) from_example.clear();
   if (!config_path_.empty()) {
     from_example.clear();

@@ -88,6 +88,8 @@ class Inputs {
   const std::string& output() const { return output_; }
   /// --config as given ("" without one: the built-in example is the base).
   const std::string& config_path() const { return config_path_; }
+  /// After resolve(): true when the body is the built-in example's (no --config, no body key).
+  bool builtin_example() const { return builtin_example_; }
   /// The configuration file's further sections (empty without --config).
   const io::Configuration& configuration() const { return config_; }
   /// The body as mass properties: its parts (or its moments) summed, with the general body's
@@ -102,6 +104,7 @@ class Inputs {
   CLI::App* command_ = nullptr;                 // its options' values are checked in resolve()
   std::string config_path_;
   std::string command_name_;
+  bool builtin_example_ = false;
   InputUses uses_;
   std::string format_;
   std::string output_;

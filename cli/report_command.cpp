@@ -58,7 +58,9 @@ Action add_report_command(CLI::App& app) {
                              : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
     report::write_report(inputs->output(), inputs->body(), inputs->state(),
                          t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt, map,
-                         inputs->config_path(), parts);
+                         inputs->builtin_example() ? std::string() : inputs->config_path().empty()
+                                                                    ? std::string("A body given on the command line")
+                                                                    : inputs->config_path(), parts);
     std::cout << "heavytop: wrote " << (std::filesystem::path(inputs->output()) / "report.html").string() << "\n";
   };
 }

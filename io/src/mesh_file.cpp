@@ -1,3 +1,5 @@
+#include <string>
+#include <cstdlib>
 #include "heavytop/io/mesh_file.hpp"
 
 #include <algorithm>
@@ -54,11 +56,19 @@ std::string token_shown(std::string_view t) {
 bool parse_double(std::string_view t, double& out) {
   if (t.empty()) return false;
   if (t.front() == '+') t.remove_prefix(1);
+#if defined(__EMSCRIPTEN__)  // its libc++ has no floating-point from_chars (the core in WebAssembly, web/)
+  if (t.empty() || std::isspace(static_cast<unsigned char>(t.front())) || t.front() == '+') return false;
+  const std::string copy(t);
+  char* stop = nullptr;
+  out = std::strtod(copy.c_str(), &stop);  // out of range: +-HUGE_VAL, reported as not finite
+  return stop == copy.c_str() + copy.size();
+#else
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), out);
   if (end != t.data() + t.size()) return false;
   if (ec == std::errc::result_out_of_range) out = std::numeric_limits<double>::infinity();  // reported as not finite
   else if (ec != std::errc()) return false;
   return true;
+#endif
 }
 
 bool parse_int(std::string_view t, long long& out) {
@@ -99,7 +109,9 @@ void add_polygon(TriangleMesh& mesh, const std::vector<std::uint32_t>& polygon) 
 
 float read_le_float(const unsigned char* p) {
   std::uint32_t u = std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
-  return std::bit_cast<float>(u);
+  float f;
+  std::memcpy(&f, &u, sizeof f);  // std::bit_cast, which Emscripten's libc++ lacks
+  return f;
 }
 
 void read_binary_stl(std::string_view data, std::uint64_t count, TriangleMesh& mesh) {
