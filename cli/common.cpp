@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -62,8 +65,38 @@ std::string flag_of(const std::string& field) {
   return it == flags.end() ? field : it->second;
 }
 
+CLI::Validator positive_count() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        long long n = 0;
+        const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+        if (ec != std::errc() || end != value.data() + value.size() || n < 1)
+          return "must be a whole number from 1 to " + std::to_string(std::numeric_limits<long long>::max());
+        return "";
+      },
+      "INT >= 1");
+}
+
+/// The realizability warning of the body resolve() made (SPEC section 1), empty for a real
+/// body: printed by run_reporting_errors() when the command succeeds, so that bad input is
+/// still refused in one line.
+static std::string& realizability_warning() {
+  static std::string warning;
+  return warning;
+}
+
+/// Throws InvalidInput naming the first option of `command` given an empty value (CLI11 makes
+/// `--length ""` a 0 and `--config ""` no file at all).
+static void refuse_empty_values(const CLI::App& command) {
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->get_type_size() == 0) continue;  // a flag
+    for (const std::string& value : option->results())
+      if (value.empty()) throw InvalidInput(option->get_name(), "must not be empty");
+  }
+}
+
 Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses uses)
-    : command_name_(command.get_name()), uses_(uses), format_(formats.front()) {
+    : command_(&command), command_name_(command.get_name()), uses_(uses), format_(formats.front()) {
   command.add_option("--config", config_path_,
                      "TOML configuration file (docs/contract.md, section 4); without it the built-in toy top, "
                      "whose keys the options below override one by one")
@@ -126,6 +159,7 @@ void Inputs::resolve(bool allow_general) {
   }
   if (!uses_.motion) refuse_unused(spin_rpm_.option, "motion");
   if (!uses_.damping) refuse_unused(driven_, "damping");
+  refuse_empty_values(*command_);
   Body body = example_toy_top();
   // One rule for the motion, the same in Python: its keys default to 0 (SPEC section 4) as soon
   // as the body is described (a --config, or any of --A --B --C --mass --length); only the
@@ -206,6 +240,17 @@ void Inputs::resolve(bool allow_general) {
   body.damping = damping;
   validate(body);
   validate(state);
+  if (!is_realizable(body))  // SPEC section 1: said once when the command has done its work
+    realizability_warning() = (body.general.is_zero()
+                      ? fmt::format("heavytop: warning: this body cannot exist as given: A + B - C = {:.6g} kg m^2 is "
+                                    "less than 2 m R^2 = {} kg m^2 (its central moments break the triangle "
+                                    "inequality); going on\n",
+                                    body.A + body.B - body.C,
+                                    std::isfinite(2.0 * body.mass * body.length * body.length)
+                                        ? fmt::format("{:.6g}", 2.0 * body.mass * body.length * body.length)
+                                        : std::string("beyond a double"))
+                      : std::string("heavytop: warning: this body cannot exist as given: its principal moments of "
+                                    "inertia about the centre of mass break the triangle inequality; going on\n"));
   body_ = body;
   state_ = state;
 }
@@ -247,7 +292,9 @@ ProgressBar::~ProgressBar() {
 
 int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
   try {
-    return body();
+    const int status = body();
+    std::cerr << realizability_warning();
+    return status;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -49,6 +49,10 @@ std::size_t mpi_launch_size();
 /// the same), 2 (after saying why) if there is none and the job has more.
 int run_sweep_under_mpi(int argc, char** argv, bool replace_process);
 
+/// A CLI11 check for a count option such as --max-steps: a whole number >= 1 that fits a
+/// 64-bit signed integer (CLI11 alone wraps "-1" and 2^64 into an unsigned count).
+CLI::Validator positive_count();
+
 /// Which of the configuration's sections a command uses: the body always; the motion (--spin,
 /// --theta0, ...) and the damping (--transverse-damping, ..., --driven) unless cleared. An
 /// option of a section the command does not use is refused by Inputs::resolve() (exit 2,
@@ -95,6 +99,7 @@ class Inputs {
     CLI::Option* option = nullptr;
     double value = 0.0;
   };
+  CLI::App* command_ = nullptr;                 // its options' values are checked in resolve()
   std::string config_path_;
   std::string command_name_;
   InputUses uses_;

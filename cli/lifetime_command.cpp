@@ -29,7 +29,8 @@ Action add_lifetime_command(CLI::App& app) {
   cmd->add_option("--atol", options->integrator.atol, "nonlinear: absolute tolerance per step")
       ->default_str(fmt::format("{}", options->integrator.atol));
   cmd->add_option("--max-steps", options->integrator.max_steps,
-                  "nonlinear: the most integration steps before it gives up");
+                  "nonlinear: the most integration steps before it gives up")
+      ->check(positive_count());
   return [inputs, options, horizon, horizon_option] {
     inputs->resolve();
     LifetimeOptions o = *options;

@@ -1,6 +1,7 @@
 // heavytop precession --tilt THETA: the steady motions at a tilt (steady precessions of a
 // symmetric top, tilted permanent rotations) and the initial states that start on them.
 #include <cmath>
+#include <iostream>
 #include <memory>
 #include <optional>
 
@@ -22,6 +23,9 @@ Action add_precession_command(CLI::App& app) {
     inputs->resolve();
     const Body& body = inputs->body();
     const double spin = inputs->state().spin;
+    if (!body.damping.conservative())
+      std::cerr << "heavytop: warning: precession is the conservative body's: its damping, friction and motor are "
+                   "ignored (a damped body's steady motions decay; `heavytop lifetime` follows them)\n";
     std::optional<PrecessionAnalysis> steady;
     if (is_symmetric(body)) steady = analyse_precession(body, *tilt, spin);
     const auto rotations = permanent_rotations(body, *tilt);

@@ -51,9 +51,14 @@ Action add_report_command(CLI::App& app) {
     } else if (!slices->empty()) {
       throw InvalidInput("--slice", "needs --map FILE");
     }
+    // A body of parts is drawn as those parts (a mesh from its own file).
+    std::vector<report::DrawnPart> parts;
+    for (const io::PartSpec& p : inputs->configuration().parts)
+      parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
+                             : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
     report::write_report(inputs->output(), inputs->body(), inputs->state(),
                          t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt, map,
-                         inputs->config_path());
+                         inputs->config_path(), parts);
     std::cout << "heavytop: wrote " << (std::filesystem::path(inputs->output()) / "report.html").string() << "\n";
   };
 }

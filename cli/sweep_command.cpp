@@ -62,12 +62,14 @@ struct VerdictCounts {
 std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o) {
   const Body& b = in.body();
   const InitialState& s = in.state();
-  std::string f = fmt::format("heavytop-sweep-v3 body {} {} {} {} {} {} state {} {} {} {} {}", b.A, b.B, b.C, b.mass,
-                              b.gravity, b.length, s.spin, s.theta0, s.phi0, s.theta_rate0, s.phi_rate0);
+  // v4: the damping, the friction and the motor change verdicts too (a v3 partial left them out).
+  std::string f = fmt::format("heavytop-sweep-v4 body {} {} {} {} {} {} state {} {} {} {} {} damping {} {} {} {}", b.A,
+                              b.B, b.C, b.mass, b.gravity, b.length, s.spin, s.theta0, s.phi0, s.theta_rate0,
+                              s.phi_rate0, b.damping.transverse, b.damping.axial, b.damping.friction, b.damping.driven);
   for (const auto& a : axes) f += fmt::format(" vary {}={}:{}:{}", a.key, a.start, a.stop, a.count);
   if (o.nonlinear)
-    f += fmt::format(" nonlinear {} {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol,
-                     name(o.nonlinear_integrator));
+    f += fmt::format(" nonlinear {} {} {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol,
+                     name(o.nonlinear_integrator), o.integrator.max_steps);
   if (in.format() != "csv") f += " format " + in.format();
   return f + "\n";
 }
@@ -92,16 +94,19 @@ struct Journal {
     io::pack_verdicts(v, bytes);
     return bytes;
   }
-  /// The number of whole records in `content` (a partial file that starts with head), which
-  /// is cut after the last of them.
-  std::size_t whole_records(std::string& content) const {
-    if (packed) {
-      const std::size_t n = (content.size() - head.size()) / io::kPackedVerdictSize;
-      content.resize(head.size() + n * io::kPackedVerdictSize);
-      return n;
+  /// The number of leading records in `content` (a partial file that starts with head) that
+  /// are whole and this sweep's (io::valid_journal_records: a torn record, a row off the grid,
+  /// rows beyond it, zero padding end them); `content` is cut after the last of them.
+  std::size_t whole_records(std::string& content, const std::vector<SweepAxis>& axes, bool nonlinear) const {
+    const std::string_view records = std::string_view(content).substr(head.size());
+    const std::size_t n = io::valid_journal_records(records, axes, nonlinear, packed);
+    std::size_t bytes = n * io::kPackedVerdictSize;
+    if (!packed) {
+      bytes = 0;
+      for (std::size_t i = 0; i < n; ++i) bytes = records.find('\n', bytes) + 1;
     }
-    content.erase(content.rfind('\n') + 1);  // drop a torn line (head ends in '\n')
-    return static_cast<std::size_t>(std::count(content.begin() + head.size(), content.end(), '\n'));
+    content.resize(head.size() + bytes);
+    return n;
   }
 };
 
@@ -133,7 +138,8 @@ Action add_sweep_command(CLI::App& app) {
           ->default_str(fmt::format("{:g}", s->options.integrator.atol)),
       cmd->add_option("--max-steps", s->options.integrator.max_steps,
                       "nonlinear: the most integration steps one point's run may take")
-          ->default_str(fmt::format("{}", s->options.integrator.max_steps))};
+          ->default_str(fmt::format("{}", s->options.integrator.max_steps))
+          ->check(positive_count())};
   return [inputs, s, nonlinear_only] {
     inputs->resolve();
     if (s->model != "nonlinear")
@@ -194,7 +200,7 @@ Action add_sweep_command(CLI::App& app) {
     if (fs::exists(partial) && fs::exists(args_file) && read_file(args_file) == args) {
       std::string content = read_file(partial);
       if (content.starts_with(journal.head)) {
-        done = std::min(total, journal.whole_records(content));
+        done = journal.whole_records(content, axes, s->options.nonlinear);
         fs::resize_file(partial, content.size());
       }
     }

@@ -36,7 +36,7 @@ echo "$name: ${seconds} s, $(stat number_of_executed_units) executions ($(stat a
      "peak RSS $(stat peak_rss_mb) MB, exit $rc, findings $findings"
 if [ "$rc" -ne 0 ] || [ "$findings" -ne 0 ]; then
   echo "$name: FINDING (log: $work/log; input: $work/artifacts/)"
-  grep -E -m1 -A40 'ERROR: |runtime error|==ERROR|deadly signal|uncaught|timeout|out-of-memory|fuzz_(cli|config):' \
+  grep -E -m1 -A40 'ERROR: |runtime error|==ERROR|deadly signal|uncaught|timeout|out-of-memory|fuzz_(cli|config|mesh|decay|map):' \
     "$work/log" || tail -40 "$work/log"
   ls -l "$work/artifacts"
   exit 1

@@ -5,7 +5,7 @@
 # Fails on any finding (crash, sanitizer report, leak, timeout, exception, out of memory); the
 # input that found it is left in build-fuzz/fuzz/run-NAME/artifacts/.
 #
-#   scripts/fuzz.sh [SECONDS [TARGET...]]      TARGET: config, cli (default both)
+#   scripts/fuzz.sh [SECONDS [TARGET...]]      TARGET: config, cli, mesh, decay, map (default all)
 #
 # Reproduce a finding: build-fuzz/fuzz/fuzz_NAME build-fuzz/fuzz/run-NAME/artifacts/crash-...
 # (fuzz_cli's input is the argument list, one per line; HEAVYTOP_FUZZ_VERBOSE=1 shows its output).
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(config cli)
+[ ${#targets[@]} -eq 0 ] && targets=(config cli mesh decay map)
 
 ./scripts/install-deps.sh
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"

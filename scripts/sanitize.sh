@@ -7,6 +7,8 @@
 #
 #   scripts/sanitize.sh [CTEST ARGS...]        e.g. scripts/sanitize.sh -R hostile_input
 #
+# Then every fuzzer runs for 60 s (HEAVYTOP_FUZZ_SECONDS) through scripts/fuzz.sh.
+#
 # Left out (by label): `package` (package_test.sh installs the libraries and builds consumers
 # without -fsanitize, and the instrumented static libraries cannot link there) and `pip` (pip
 # compiles a separate, unsanitized copy of the module; minutes). The Python tests (python,
@@ -54,6 +56,17 @@ LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.s
   ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" \
   ctest --test-dir build-asan --output-on-failure -LE 'package|pip' -R '^python' "$@" || status=1
 keep_output python
+
+# A short run of every fuzzer (issue 30: the configuration, the command line, mesh files, the
+# decay CSV, maps and sweep journals), each HEAVYTOP_FUZZ_SECONDS (60) under ASan and UBSan
+# with libFuzzer (clang-14; build-fuzz/). Its findings fail the script like a test's.
+echo "sanitize: the fuzzers, ${HEAVYTOP_FUZZ_SECONDS:-60} s each (scripts/fuzz.sh)"
+if command -v clang++-14 >/dev/null; then
+  ./scripts/fuzz.sh "${HEAVYTOP_FUZZ_SECONDS:-60}" || status=1
+else
+  echo "sanitize: clang++-14 not found: the fuzzers were not run"
+  status=1
+fi
 
 end=$(date +%s)
 reports=$(find "$logs" -type f | wc -l)

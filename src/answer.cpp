@@ -99,6 +99,8 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
     a.why = AnswerCase::ProvenStable;
     a.proven = true;
     a.max_tilt = wander.max_tilt;
+    a.small_disturbances_only = lyapunov.verdict.certificate == LyapunovCertificate::Kam ||
+                                lyapunov.verdict.certificate == LyapunovCertificate::KamMarkeev;
     return a;
   }
   a.verdict = AnswerVerdict::StaysUpForHorizon;

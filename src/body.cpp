@@ -40,6 +40,24 @@ double gravity_time(const Body& body) noexcept {
 
 bool is_planar(const Body& body) noexcept { return body.A + body.B <= body.C * (1.0 + kSymmetryTolerance); }
 
+bool is_realizable(const Body& body) {
+  const GeneralInertia& g = body.general;
+  const Eigen::Vector3d r(g.offset_x, g.offset_y, body.length);
+  Eigen::Matrix3d inertia;
+  inertia << body.A, -g.Ixy, -g.Ixz, -g.Ixy, body.B, -g.Iyz, -g.Ixz, -g.Iyz, body.C;
+  // Parallel axes: about the centre of mass, I_O - m (|r|^2 1 - r r^T).
+  const Eigen::Matrix3d central =
+      inertia - body.mass * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  const double tolerance = 1e-9 * inertia.trace();
+  if (g.is_zero()) {  // principal already: no eigensolver's rounding
+    const double a = central(0, 0), b = central(1, 1), c = central(2, 2);
+    return a + b - c >= -tolerance && b + c - a >= -tolerance && c + a - b >= -tolerance;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(central, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d e = eig.eigenvalues();  // ascending
+  return e(0) >= -tolerance && e(0) + e(1) - e(2) >= -tolerance;
+}
+
 void validate(const Body& body) {
   require_positive(body.A, "body.A");
   require_positive(body.B, "body.B");

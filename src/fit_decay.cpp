@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <unsupported/Eigen/NonLinearOptimization>
@@ -364,12 +365,17 @@ DecayFit fit_spin_decay(const Body& body, const DecayData& data, const FitDecayO
 
   // The residuals through the physical law itself (one place for it: damping.hpp).
   const SpinDecayLaw law{C, fit.axial.value, fit.friction.value};
-  double rss = 0.0;
+  // Scaled by the largest residual: r^2 overflows a double for spins near 1e300.
+  std::vector<double> residual(n);
+  double largest = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double r = law.spin(fit.spin0.value, data.t[i]) - data.spin[i];
-    rss += r * r;
+    residual[i] = law.spin(fit.spin0.value, data.t[i]) - data.spin[i];
+    largest = std::max(largest, std::abs(residual[i]));
   }
-  fit.rms_residual = std::sqrt(rss / static_cast<double>(n));
+  double rss = 0.0;
+  if (largest > 0.0 && std::isfinite(largest))
+    for (double r : residual) rss += (r / largest) * (r / largest);
+  fit.rms_residual = std::isfinite(largest) ? largest * std::sqrt(rss / static_cast<double>(n)) : largest;
   fit.stop_time = law.stop_time(fit.spin0.value);
 
   // What the user should know about these numbers.

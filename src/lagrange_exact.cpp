@@ -499,8 +499,15 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
   // Everything from the state in body axes: gamma = R^T e_zeta, w.
   const Eigen::Vector3d gamma = state.attitude.row(2).transpose();
   const Eigen::Vector3d& w = state.omega;
-  const double u0 = gamma.z();
-  const double s02 = gamma.x() * gamma.x() + gamma.y() * gamma.y();  // sin^2(tilt), exact near 0
+  double u0 = gamma.z();
+  double s02 = gamma.x() * gamma.x() + gamma.y() * gamma.y();  // sin^2(tilt), exact near 0
+  // An axis at a vertical to rounding with no transverse rate (theta0 = 3.141592653589793,
+  // the double nearest pi, at the inverted rest of a hanging body) is at the vertical: an
+  // equilibrium, which the closed form would otherwise start on the separatrix of.
+  if (w.x() == 0.0 && w.y() == 0.0 && s02 <= 4.0 * kEps * kEps) {
+    s02 = 0.0;
+    u0 = std::copysign(1.0, u0);
+  }
   const double om = u0 > 0.0 ? s02 / (1.0 + u0) : 1.0 - u0;          // 1 - u0
   const double op = u0 < 0.0 ? s02 / (1.0 - u0) : 1.0 + u0;          // 1 + u0
   top.w3 = w.z();
@@ -576,7 +583,10 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
 
   // 4 lambda^2 = beta (u_third - u_a); k^2 = (u_b - u_a)/(u_third - u_a), k'^2 likewise.
   const double four_lambda2 = -g.c[2] - beta * (2.0 * x_a + x_b);
-  top.constant_tilt = d.d == 0.0 || !(four_lambda2 > 0.0) || !std::isfinite(four_lambda2);
+  // u0 a double root of f (u0' = 0 and f'(u0) = 0): an equilibrium of the tilt, stable or not
+  // (the rest at the inverted vertical, an unstable sleeping top): the tilt stays u0 exactly.
+  const bool tilt_equilibrium = g.c[0] == 0.0 && g.c[1] == 0.0;
+  top.constant_tilt = tilt_equilibrium || d.d == 0.0 || !(four_lambda2 > 0.0) || !std::isfinite(four_lambda2);
   if (top.constant_tilt) {
     // Sleeping top, steady precession or rest: u = u0, phi' and psi' constant.
     top.u_min = top.u_max = u0;

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "heavytop/linear_models.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
 
 #include "detail/integration.hpp"
@@ -41,6 +42,9 @@ Lifetime spin_decay(const Body& body, const InitialState& initial, const Lifetim
     if (std::abs(initial.spin) <= *life.critical_spin) life.time_to_critical = 0.0;
     else life.time_to_critical = SpinDecayLaw{body.C, d.axial, d.friction}.time_to(initial.spin, *life.critical_spin);
   }
+  // A horizon given beyond what a double resolves is refused before the run, as simulate's
+  // --t-end is (1e300 s ran until --max-steps gave up).
+  if (options.horizon) validate_horizon(body, initial, *options.horizon, "horizon");
   life.max_tilt = options.max_tilt;
   life.horizon = options.horizon ? *options.horizon
                  : life.time_to_critical && *life.time_to_critical > 0.0 ? 10.0 * *life.time_to_critical

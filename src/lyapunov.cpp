@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <exception>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -57,6 +59,52 @@ bool grows_exponentially(const Body& body, double spin) {
   return largest > 1e-9 * size;
 }
 
+/// Index 2, linearly stable, a principal asymmetric body: Arnold's theorem on the normal form,
+/// Markeev's at 1:3 (SPEC section 7; docs/lyapunov.md).
+LyapunovVerdict kam_verdict(const Body& body, double spin, LyapunovVerdict v) {
+  using K = LyapunovVerdictKind;
+  using Cert = LyapunovCertificate;
+  // At the ends of the linearized model's stable spins two frequencies meet in a Jordan block
+  // (a Krein collision): there the eigen-decomposition still splits them by ~sqrt(eps), so the
+  // linear model's own verdict, not the frequencies, says that this is the 1:1 case.
+  if (!linear_stability(linear_model(LinearModelKind::Linearized, body), spin).stable)
+    return verdict(std::move(v), K::Undecided, Cert::None,
+                   "index 2 at the boundary of linear stability (w1 = w2, a Jordan block): Arnold's "
+                   "theorem does not apply, and higher orders are not analysed");
+  v.normal_form = birkhoff_normal_form(body, spin);
+  if (!v.normal_form)
+    return verdict(std::move(v), K::Undecided, Cert::None,
+                   "index 2 at the 1:1 resonance (w1 = w2): Arnold's theorem does not apply, and "
+                   "higher orders are not analysed");
+  const NormalForm& nf = *v.normal_form;
+  if (std::abs(nf.D) <= kDegeneracyTolerance * nf.D_scale)
+    return verdict(std::move(v), K::Undecided, Cert::None,
+                   "index 2 with D = 0: the order-4 normal form is degenerate, order 6 would "
+                   "decide and is not analysed");
+  if (nf.resonance == 3) {
+    const double bound = 3.0 * std::sqrt(3.0) * *nf.a13 * std::pow(std::min(nf.w1, nf.w2), 2);
+    const double margin = std::abs(nf.D) - bound;
+    if (std::abs(margin) <= kDegeneracyTolerance * (nf.D_scale + bound))
+      return verdict(std::move(v), K::Undecided, Cert::None,
+                     "index 2 at the 1:3 resonance with equality in Markeev's inequality: not "
+                     "decided at order 4");
+    if (margin > 0.0)
+      return verdict(std::move(v), K::Stable, Cert::KamMarkeev,
+                     fmt::format("proof (for perturbations small enough): at the 1:3 resonance "
+                                 "|D| = {:.6g} > 3 sqrt(3) a13 min(w)^2 = {:.6g} (Markeev)",
+                                 std::abs(nf.D), bound));
+    return verdict(std::move(v), K::Unstable, Cert::Resonance,
+                   fmt::format("at the 1:3 resonance |D| = {:.6g} < 3 sqrt(3) a13 min(w)^2 = {:.6g}: "
+                               "the resonant exchange of the two modes grows (Markeev)",
+                               std::abs(nf.D), bound));
+  }
+  return verdict(std::move(v), K::Stable, Cert::Kam,
+                 fmt::format("proof (for perturbations small enough): Arnold's theorem, D = {:.6g} "
+                             "!= 0 away from the 1:1 and 1:3 resonances (index 2: gyroscopic, "
+                             "destroyed by internal damping)",
+                             nf.D));
+}
+
 }  // namespace
 
 std::string_view name(LyapunovVerdictKind verdict) {
@@ -76,6 +124,9 @@ std::string_view name(LyapunovCertificate certificate) {
     case LyapunovCertificate::OddIndex: return "odd-index";
     case LyapunovCertificate::LinearInstability: return "linear-instability";
     case LyapunovCertificate::None: return "none";
+    case LyapunovCertificate::Kam: return "kam";
+    case LyapunovCertificate::KamMarkeev: return "kam-markeev";
+    case LyapunovCertificate::Resonance: return "resonance";
   }
   return "none";
 }
@@ -140,14 +191,11 @@ LyapunovVerdict lyapunov_stability(const Body& body, double spin) {
     return verdict(v, K::Undecided, Cert::None,
                    "a zero stiffness: degenerate, decided by higher-order terms that are not "
                    "analysed");
-  return verdict(v, K::Undecided, Cert::None,
-                 "index 2: gyroscopic stability only, destroyed by internal damping; the KAM "
-                 "test is not built");
+  return kam_verdict(body, spin, std::move(v));
 }
 
-std::vector<SpinInterval> lyapunov_stable_spin_intervals(const Body& body) {
-  validate(body);
-  refuse_general(body, "the Lyapunov analysis");
+/// The closed-form part of lyapunov_stable_spin_intervals: energy-Casimir, Chetaev, the free body.
+static std::vector<SpinInterval> closed_form_intervals(const Body& body) {
   const double k = body.mgR();
   const double inf = std::numeric_limits<double>::infinity();
   // The candidate stable set in s = w0^2, as (lo, hi): open or closed is settled below by the
@@ -178,6 +226,125 @@ std::vector<SpinInterval> lyapunov_stable_spin_intervals(const Body& body) {
     interval.hi_included = lyapunov_stability(body, *interval.hi).verdict == LyapunovVerdictKind::Stable;
   }
   return {interval};
+}
+
+namespace {
+
+/// The spins (rad/s) of index 2 at which the linearisation is stable, as open pieces (lo, hi)
+/// (hi infinite when unbounded): where the KAM verdict applies.
+std::vector<std::pair<double, double>> kam_pieces(const Body& body) {
+  const double k = body.mgR(), inf = std::numeric_limits<double>::infinity();
+  if (is_symmetric(body) || k == 0.0) return {};
+  double lo = 0.0, hi = inf;  // in s = w0^2: c s - k < 0 for both stiffnesses
+  for (double c : {difference(body.C, body.A), difference(body.C, body.B)}) {
+    if (c > 0.0) {
+      if (k <= 0.0) return {};
+      hi = std::min(hi, k / c);
+    } else if (c < 0.0) {
+      lo = std::max(lo, k / c);
+    } else if (k <= 0.0) {
+      return {};
+    }
+  }
+  std::vector<std::pair<double, double>> out;
+  for (const SpinInterval& i : stable_spin_intervals(linear_model(LinearModelKind::Linearized, body))) {
+    const double a = std::max(i.lo, std::sqrt(lo)), b = std::min(i.hi.value_or(inf), std::sqrt(hi));
+    if (a < b) out.emplace_back(a, b);
+  }
+  return out;
+}
+
+/// The signed quantities whose zeros are KAM exceptions: D / D_scale, w1 - w2, w1 - 3 w2,
+/// w2 - 3 w1 (relative to w1 + w2); nullopt where there is no normal form.
+std::optional<std::array<double, 4>> kam_signs(const Body& body, double spin) {
+  const auto nf = birkhoff_normal_form(body, spin);
+  if (!nf) return std::nullopt;
+  const double sum = nf->w1 + nf->w2;
+  return std::array<double, 4>{nf->D / nf->D_scale, (nf->w1 - nf->w2) / sum, (nf->w1 - 3.0 * nf->w2) / sum,
+                               (nf->w2 - 3.0 * nf->w1) / sum};
+}
+
+}  // namespace
+
+std::vector<KamException> kam_exceptions(const Body& body) {
+  validate(body);
+  refuse_general(body, "the Lyapunov analysis");
+  std::vector<KamException> out;
+  const double natural = std::sqrt(std::abs(body.mgR()) / std::min({body.A, body.B, body.C}));
+  constexpr std::string_view kWhat[] = {"D = 0", "1:1", "1:3", "1:3"};
+  for (auto [a, b] : kam_pieces(body)) {
+    // The grid: geometric from a to b (or to 1e4 max(a, natural) when unbounded), ends excluded.
+    const double top = std::isfinite(b) ? b : 1e4 * std::max(a, natural);
+    const double start = a > 0.0 ? a : 1e-4 * top;
+    auto at = [&](int i) { return start * std::pow(top / start, (i + 0.5) / kKamScanPoints); };
+    double w_prev = at(0);
+    auto prev = kam_signs(body, w_prev);
+    for (int i = 1; i < kKamScanPoints; ++i) {
+      const double w = at(i);
+      const auto cur = kam_signs(body, w);
+      if (!cur) {
+        out.push_back({w, "1:1"});  // no normal form inside a stable piece: a double frequency
+      } else if (prev) {
+        for (int f = 0; f < 4; ++f) {
+          if (((*prev)[f] > 0.0) == ((*cur)[f] > 0.0)) continue;
+          double l = w_prev, r = w, fl = (*prev)[f];
+          for (int it = 0; it < 200 && l < r; ++it) {  // bisection to rounding
+            const double m = 0.5 * (l + r);
+            if (m <= l || m >= r) break;
+            const auto sm = kam_signs(body, m);
+            if (!sm) { l = r = m; break; }
+            if (((*sm)[f] > 0.0) == (fl > 0.0)) l = m; else r = m;
+          }
+          const double root = 0.5 * (l + r);
+          // At 1:3 Markeev's inequality may still hold: an exception only where it fails.
+          if (f >= 2 && lyapunov_stability(body, root).verdict == LyapunovVerdictKind::Stable) continue;
+          out.push_back({root, kWhat[f]});
+        }
+      }
+      w_prev = w;
+      prev = cur;
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const KamException& x, const KamException& y) { return x.spin < y.spin; });
+  return out;
+}
+
+std::vector<SpinInterval> lyapunov_stable_spin_intervals(const Body& body) {
+  validate(body);
+  refuse_general(body, "the Lyapunov analysis");
+  std::vector<SpinInterval> out = closed_form_intervals(body);
+  const std::vector<KamException> exceptions = kam_exceptions(body);
+  auto stable_at = [&](double w) { return lyapunov_stability(body, w).verdict == LyapunovVerdictKind::Stable; };
+  for (auto [a, b] : kam_pieces(body)) {
+    std::vector<double> cuts{a};
+    for (const auto& e : exceptions)
+      if (e.spin > a && e.spin < b) cuts.push_back(e.spin);
+    cuts.push_back(b);
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      if (!(cuts[i] < cuts[i + 1])) continue;
+      SpinInterval piece;
+      piece.lo = cuts[i];
+      piece.lo_included = stable_at(piece.lo);
+      if (std::isfinite(cuts[i + 1])) {
+        piece.hi = cuts[i + 1];
+        piece.hi_included = stable_at(cuts[i + 1]);
+      }
+      out.push_back(piece);
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const SpinInterval& x, const SpinInterval& y) { return x.lo < y.lo; });
+  // Pieces that touch at a spin proven stable are one interval.
+  std::vector<SpinInterval> merged;
+  for (const SpinInterval& i : out) {
+    if (!merged.empty() && merged.back().hi && *merged.back().hi == i.lo &&
+        (merged.back().hi_included || i.lo_included)) {
+      merged.back().hi = i.hi;
+      merged.back().hi_included = i.hi_included;
+    } else {
+      merged.push_back(i);
+    }
+  }
+  return merged;
 }
 
 std::optional<double> superfast_spin(const Body& body) {

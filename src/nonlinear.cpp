@@ -449,6 +449,7 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
   const double tilt0 = tilt_of(x0);
   e.min_tilt = e.max_tilt = tilt0;
   e.exceeded = tilt0 > stop_above;
+  e.spin_at_end = x0[kW3];  // w.k at t = 0, where the scan ends when it is past stop_above already
   if (e.exceeded || horizon == 0.0) return e;
 
   Integrator<Symmetric, Damped> integrator(body, x0, horizon, options, summary);

@@ -7,7 +7,6 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
-#include "detail/quadratic.hpp"
 
 namespace heavytop {
 namespace {
@@ -67,13 +66,19 @@ PrecessionAnalysis analyse_precession(const Body& body, double tilt, double spin
   r.slow_limit = spin != 0.0 ? mgR / (C * spin) : 0.0;
   if (qa != 0.0) r.fast_limit = C * spin / qa;
   if (mgR * c > 0.0) r.min_spin = 2.0 * std::sqrt(A * mgR * c) / C;
-  const double disc = qb * qb - 4.0 * qa * qc;
   std::vector<double> roots;
   if (qa == 0.0) {  // theta = pi/2 to rounding: the quadratic is linear
     if (qb != 0.0) roots.push_back(-qc / qb);
-  } else if (disc >= 0.0) {
-    const auto [x1, x2] = detail::quadratic_roots(qa, qb, qc, disc);
-    roots = {x1.real(), x2.real()};
+  } else if (qb == 0.0) {
+    if (qa * qc < 0.0) roots = {std::sqrt(-qc / qa), -std::sqrt(-qc / qa)};
+  } else {
+    // The discriminant as qb^2 (1 - 4 qa qc / qb^2): qb^2 overflows a double at large spins
+    // (1e200 rad/s made it inf and both roots vanished), its ratio does not.
+    const double ratio = (4.0 * qa / qb) * (qc / qb);
+    if (ratio <= 1.0) {
+      const double q = -0.5 * (qb + std::copysign(std::abs(qb) * std::sqrt(1.0 - ratio), qb));
+      roots = {q / qa, qc / q};
+    }
   }
   roots.erase(std::remove_if(roots.begin(), roots.end(), [](double x) { return !(std::isfinite(x) && x != 0.0); }),
               roots.end());

@@ -1,6 +1,7 @@
 #include "heavytop/stability.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -24,6 +25,12 @@ constexpr double kCoincidence = 1e-12;
 // system matrix's scale, and ~1e-6 for roots that are double only to kCoincidence; one that
 // does not vanish (a Jordan block) is of order one.
 constexpr double kSemisimple = 1e-4;
+// The damped Routh-Hurwitz conditions' zero test: 256 eps of the size of their terms, the
+// rounding of the products they are made of. kCoincidence (4500 eps) called the damped
+// symmetric top of A = B = 1, C = 2, m g R = 1 at 100 rad/s with d_t = 0.01 "on the
+// boundary": its h3 = -4 d^4 is 5e-13 of its terms (d^2 / (2 w0^4)), its eigenvalues' real
+// part +2.5e-7 (Kelvin-Tait-Chetaev: unstable).
+constexpr double kHurwitzZero = 256.0 * std::numeric_limits<double>::epsilon();
 
 /// c0 + c1 s + c2 s^2 in s = w0^2, with m0, m1, m2 the sizes of the terms each coefficient was
 /// computed from (>= |c_i|; larger where the coefficient is a cancellation), for zero tests.
@@ -176,20 +183,56 @@ std::vector<std::complex<double>> damped_eigenvalues(const LinearModel& model, d
   const CharacteristicPolynomial p = characteristic_polynomial(model, spin);
   const Eigen::Matrix4d j = state_matrix(model, spin, rate);
   const Eigen::EigenSolver<Eigen::Matrix4d> solver(j, false);
+  const auto f = [&](std::complex<double> l) { return (((p.a4 * l + p.a3) * l + p.a2) * l + p.a1) * l + p.a0; };
+  const auto df = [&](std::complex<double> l) { return ((4.0 * p.a4 * l + 3.0 * p.a3) * l + 2.0 * p.a2) * l + p.a1; };
+  // The eigensolver's roots are accurate to ~eps of the largest: a strongly damped body's
+  // slow roots (d_t = 1e5: |l| ~ 1e-9 of the fast ones) came out wrong by 180x or with the
+  // wrong sign. Newton on the quartic, evaluated to rounding of its own terms at each root,
+  // converges to each simple root from there; a start that does not converge (a multiple
+  // root, where Newton is no better than the eigensolver) or that lands on a root another
+  // start found keeps the eigensolver's value.
+  std::array<std::complex<double>, 4> start, polished;
+  std::array<bool, 4> converged{};
+  for (int i = 0; i < 4; ++i) {
+    std::complex<double> l = start[i] = solver.eigenvalues()[i] * rate;
+    for (int it = 0; it < 100; ++it) {
+      const auto slope = df(l);
+      if (std::abs(slope) == 0.0) break;
+      const auto next = l - f(l) / slope;
+      if (!(std::isfinite(next.real()) && std::isfinite(next.imag()))) break;
+      const double step = std::abs(next - l);
+      l = next;
+      if (step <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(l)) {
+        converged[i] = true;
+        break;
+      }
+    }
+    polished[i] = l;
+  }
   std::vector<std::complex<double>> roots;
   for (int i = 0; i < 4; ++i) {
-    std::complex<double> l = solver.eigenvalues()[i] * rate;
-    for (int it = 0; it < 2; ++it) {
-      const auto f = (((p.a4 * l + p.a3) * l + p.a2) * l + p.a1) * l + p.a0;
-      const auto df = ((4.0 * p.a4 * l + 3.0 * p.a3) * l + 2.0 * p.a2) * l + p.a1;
-      if (std::abs(df) == 0.0) break;
-      const auto next = l - f / df;
-      if (!(std::isfinite(next.real()) && std::isfinite(next.imag())) ||
-          std::abs(next - l) > 1e-6 * std::abs(l) + 1e-300)
-        break;  // near a multiple root Newton is no better than the eigensolver
-      l = next;
+    bool keep = converged[i] && std::abs(f(polished[i])) <= std::abs(f(start[i]));
+    for (int j = 0; j < 4 && keep; ++j)
+      if (j != i && std::abs(polished[j] - polished[i]) <= 1e-8 * std::abs(polished[i]) &&
+          std::abs(start[j] - start[i]) > 1e-8 * std::abs(start[i]))
+        keep = false;  // two starts on one root: a multiple root, or one lost
+    roots.push_back((keep ? polished[i] : start[i]) + 0.0);
+  }
+  // Two slow roots far below two fast ones (a strongly damped body: |l| ~ m g R / d_t next to
+  // d_t / A) that are nearly double (a complex pair 1e-10 of their size from the real axis):
+  // Newton cannot separate them. The quartic divided by the fast pair's quadratic (its sum S and
+  // product P, accurate) leaves l^2 - s l + q with q = a0 / (a4 P) and s = -(a1 / a4 + S q) / P,
+  // each without cancellation: s / 2, the pair's real part, to rounding.
+  std::sort(roots.begin(), roots.end(), [](auto x, auto y) { return std::abs(x) < std::abs(y); });
+  if (std::abs(roots[1]) < 1e-3 * std::abs(roots[2])) {
+    const double S = (roots[2] + roots[3]).real(), P = (roots[2] * roots[3]).real();
+    const double q = p.a0 / (p.a4 * P);
+    const double sum = -(p.a1 / p.a4 + S * q) / P;
+    if (std::isfinite(q) && std::isfinite(sum)) {
+      const auto [x1, x2] = detail::quadratic_roots(1.0, -sum, q, sum * sum - 4.0 * q);
+      roots[0] = x1 + 0.0;
+      roots[1] = x2 + 0.0;
     }
-    roots.push_back(l + 0.0);
   }
   sort_eigenvalues(roots);
   return roots;
@@ -207,14 +250,47 @@ double damped_rate(const LinearModel& model, double spin) {
   return r;
 }
 
+/// The InvalidInput for a characteristic polynomial that overflows a double at `spin`: the
+/// spin's fault only when it does not at rest; otherwise the body's (or the damping's) term
+/// farthest from 1 in magnitude, named by its key (a scaled body at 1e150, a subnormal
+/// inertia, --length 1e200 and --transverse-damping 1e300 all blamed the spin).
+InvalidInput overflow(const LinearModel& model, double spin, bool overflows_at_rest) {
+  if (!overflows_at_rest)
+    return InvalidInput("motion.spin", fmt::format("{:g} rad/s is too large for this body: its characteristic "
+                                                   "polynomial overflows a double", spin));
+  struct Term {
+    const char* key;
+    const char* what;
+    double value;
+  };
+  const Term terms[] = {{"body.A", "A", model.M(0, 0)},
+                        {"body.B", "B", model.M(1, 1)},
+                        {"body.C", "the gyroscopic coefficient", std::abs(model.G1(0, 1))},
+                        {"body.length", "m g R", std::abs(model.K0(0, 0))},
+                        {"damping.transverse", "d_t", model.damping}};
+  const Term* blamed = &terms[0];
+  double worst = -1.0;
+  for (const Term& t : terms) {
+    if (t.value == 0.0 || !std::isfinite(t.value)) continue;
+    const double far = std::abs(std::log10(t.value));
+    if (far > worst) worst = far, blamed = &t;
+  }
+  const char* key = blamed->key;
+  const char* what = blamed->what;
+  const double value = blamed->value;
+  return InvalidInput(key, fmt::format("{} = {:g} is out of the range the stability analysis computes in: the "
+                                       "characteristic polynomial overflows a double at rest or at the spins "
+                                       "where the verdict changes",
+                                       what, value));
+}
+
 StabilityVerdict damped_stability(const LinearModel& model, double spin) {
   const DampedCharacteristic c = damped_characteristic(model);
   const double s = spin * spin;
-  if (!std::isfinite(c.h3.magnitude(s)))
-    throw InvalidInput("motion.spin", fmt::format("{:g} rad/s is too large for this body: its characteristic "
-                                                  "polynomial overflows a double", spin));
-  StabilityVerdict v;
   const double rate = damped_rate(model, spin);
+  if (!std::isfinite(c.h3.magnitude(s)) || !std::isfinite(rate) || rate == 0.0)
+    throw overflow(model, spin, !std::isfinite(c.h3.magnitude(0.0)) || !std::isfinite(damped_rate(model, 0.0)));
+  StabilityVerdict v;
   v.eigenvalues = damped_eigenvalues(model, spin, rate);
   v.growth_rate = v.eigenvalues.back().real();
   for (const auto& l : v.eigenvalues) v.growth_rate = std::max(v.growth_rate, l.real());
@@ -222,7 +298,7 @@ StabilityVerdict damped_stability(const LinearModel& model, double spin) {
   // Routh-Hurwitz, each condition's sign decided against the size of its terms.
   int negative = 0, zero = 0;
   for (const SpinPolynomial* q : {&c.a2, &c.a1, &c.a0, &c.h3}) {
-    if (is_zero(*q, s)) ++zero;
+    if (std::abs((*q)(s)) <= kHurwitzZero * q->magnitude(s)) ++zero;
     else if ((*q)(s) < 0.0) ++negative;
   }
   if (negative > 0) {  // a root in the open right half-plane (a closed-left one has all >= 0)
@@ -241,6 +317,22 @@ StabilityVerdict damped_stability(const LinearModel& model, double spin) {
     std::vector<std::complex<double>> on_axis;
     for (const auto& l : v.eigenvalues)
       if (std::abs(l.real()) <= axis) on_axis.push_back(std::complex<double>(0.0, l.imag()));
+    // A root off the axis to the right that the conditions could not see (zero to rounding):
+    // the mode grows, whatever the others do.
+    // A root to the right of the axis by more than its own error (Newton's step there: a few
+    // eps of |l| for a simple root, large at a multiple one) grows, however small it is next
+    // to the fast roots (d_t = 1e7: 1e-18 of them, within `axis`).
+    const CharacteristicPolynomial p = characteristic_polynomial(model, spin);
+    const auto resolved_growth = [&](std::complex<double> l) {
+      const auto f = (((p.a4 * l + p.a3) * l + p.a2) * l + p.a1) * l + p.a0;
+      const auto df = ((4.0 * p.a4 * l + 3.0 * p.a3) * l + 2.0 * p.a2) * l + p.a1;
+      const double error = std::abs(df) > 0.0 ? std::abs(f / df) : std::numeric_limits<double>::infinity();
+      return l.real() > axis || (l.real() > 0.0 && l.real() > 1e3 * error + 64.0 * std::numeric_limits<double>::epsilon() * std::abs(l));
+    };
+    if (std::any_of(v.eigenvalues.begin(), v.eigenvalues.end(), resolved_growth)) {
+      v.reason = fmt::format("a mode grows under damping (e-folding time {:.4g} s)", 1.0 / v.growth_rate);
+      return v;
+    }
     bool semisimple = true;
     for (const auto& l : on_axis) {
       const auto m = std::count_if(on_axis.begin(), on_axis.end(),
@@ -266,9 +358,8 @@ StabilityVerdict linear_stability(const LinearModel& model, double spin) {
   const double s = spin * spin;
   const double a4 = c.a4, a2 = c.a2(s), a0 = c.a0(s), disc = c.discriminant(s);
   const bool a0_zero = is_zero(c.k11, s) || is_zero(c.k22, s);
-  if (!std::isfinite(c.discriminant.magnitude(s)) || !std::isfinite(a4))
-    throw InvalidInput("motion.spin", fmt::format("{:g} rad/s is too large for this body: its characteristic "
-                                                  "polynomial overflows a double", spin));
+  if (!std::isfinite(c.discriminant.magnitude(s)) || !std::isfinite(a4) || a4 == 0.0)
+    throw overflow(model, spin, !std::isfinite(c.discriminant.magnitude(0.0)) || !std::isfinite(a4) || a4 == 0.0);
   const bool double_root = std::abs(disc) <= kCoincidence * c.discriminant.magnitude(s);
 
   // Roots mu = lambda^2 of a4 mu^2 + a2 mu + a0.
@@ -360,7 +451,17 @@ std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model) {
   const double k_scale = std::max({std::abs(model.K0(0, 0)), std::abs(model.K0(1, 1))});
   const double m_scale = std::min({model.M(0, 0), model.M(1, 1)});
   const double s_beyond = std::max(4.0 * ends.back(), k_scale > 0.0 ? k_scale / m_scale : 1.0);
-  auto stable_at = [&](double s) { return linear_stability(model, std::sqrt(s)).stable; };
+  auto stable_at = [&](double s) {
+    // A spin of this analysis's own (an end, a gap's middle), not the user's: when the
+    // polynomial overflows there, the body's scale is at fault (--length 1e200 put the
+    // critical spin at 4e102 rad/s and blamed motion.spin).
+    try {
+      return linear_stability(model, std::sqrt(s)).stable;
+    } catch (const InvalidInput& e) {
+      if (e.key() != "motion.spin") throw;
+      throw overflow(model, std::sqrt(s), true);
+    }
+  };
 
   std::vector<Piece> pieces;
   for (std::size_t i = 0; i < ends.size(); ++i) {

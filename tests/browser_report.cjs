@@ -3,7 +3,11 @@
 // Loads each REPORT_DIR/report.html from file:// and checks what a student would: every request is
 // a local file (any other request fails the test), no console errors, the WebGL view draws and
 // animates, pause stops it, scrubbing moves it, the overlays show, every figure and plot loads,
-// the explorer answers a click. Screenshots go to OUT_DIR/NAME-*.png. Exit 0 when all pass.
+// the explorer answers a click; the body is drawn as it is made (each part's geometry in the scene,
+// at its place and size, a mesh with its file's own triangles; the ellipsoid only for a body given
+// by its moments), the floor is below its lowest point, the camera sees all of it over the whole
+// motion, and "exaggerate tilt x10" draws the tilt ten times as large (and back). Screenshots go to
+// OUT_DIR/NAME-*.png (NAME-view, NAME-exaggerated, NAME-overlays, ...). Exit 0 when all pass.
 const puppeteer = require("puppeteer-core");
 const fs = require("fs");
 const path = require("path");
@@ -76,7 +80,7 @@ async function checkPage(browser, name, reportDir) {
   const webgl = await page.$eval("#scene-canvas", (c) => !!(c.getContext("webgl2") || c.getContext("webgl")));
   check("WebGL context", webgl);
   const s0 = await stats();
-  check("the 3D view draws (many colours, dark strokes)", s0.colours > 30 && s0.dark > 50, JSON.stringify(s0));
+  check("the 3D view draws (many colours, dark strokes)", s0.colours > 30 && s0.dark > 20, JSON.stringify(s0));
 
   const a = await grab(), va = await view();
   await sleep(700);
@@ -103,6 +107,86 @@ async function checkPage(browser, name, reportDir) {
         `t = ${ve.time} of ${ve.T}`);
   const readout = await page.$eval("#time", (el) => el.textContent);
   check("the time readout follows", readout.includes((ve.T / 2).toFixed(3)), readout);
+
+  // The body as drawn: its parts as their own shapes at their places (a mesh from its own
+  // triangles), the ellipsoid only for a body given by its moments.
+  const drawn = await page.evaluate(() => {
+    const v = window.heavytopView, D = window.HEAVYTOP_REPORT;
+    const inScene = v.shapes.map((s) => { const o = v.scene.getObjectByProperty("uuid", s.uuid); return !!o && o.visible && o.isMesh; });
+    // The file's own triangle count, from the bytes the page carries: a binary STL's bytes
+    // 80..83, an OBJ's faces (fans of n - 2), an ASCII PLY's "element face" (of triangles).
+    const stl = D.parts.map((p) => {
+      if (!p.data) return null;
+      const b = Uint8Array.from(atob(p.data), (c) => c.charCodeAt(0)), text = () => new TextDecoder().decode(b);
+      if (p.format === "stl")
+        return new TextDecoder().decode(b.subarray(0, 5)) === "solid" ? text().split("endfacet").length - 1 : new DataView(b.buffer).getUint32(80, true);
+      if (p.format === "obj")
+        return text().split("\n").filter((l) => /^f\s/.test(l)).reduce((n, l) => n + l.trim().split(/\s+/).length - 3, 0);
+      if (p.format === "ply") { const m = /element face (\d+)/.exec(text().slice(0, 2000)); return m ? +m[1] : null; }
+      return null;
+    });
+    return { shapes: v.shapes.map((s) => ({ ...s, data: undefined })), parts: D.parts.map((p) => ({ ...p, data: undefined })), inScene, stl };
+  });
+  const near = (x, y, tol) => Math.abs(x - y) <= tol;
+  if (drawn.parts.length) {
+    check("a shape drawn per part, no ellipsoid", drawn.shapes.length === drawn.parts.length &&
+          drawn.shapes.every((s, k) => s.shape === drawn.parts[k].shape), drawn.shapes.map((s) => s.shape).join(" "));
+    check("every part's geometry is in the scene", drawn.inScene.every(Boolean) && drawn.shapes.every((s) => s.triangles > 0),
+          drawn.shapes.map((s) => `${s.label}: ${s.triangles} triangles`).join(", "));
+    for (const [k, p] of drawn.parts.entries()) {
+      const s = drawn.shapes[k], tol = 1e-6 + 1e-3 * (p.radius || 0);
+      if (p.shape === "mesh") {
+        if (drawn.stl[k] !== null)
+          check(`part ${k} (${p.label}): the mesh's own triangles`, s.triangles === drawn.stl[k], `${s.triangles} drawn, ${drawn.stl[k]} in the file`);
+        continue;
+      }
+      const top = p.z0 + (p.shape === "sphere" ? 2 * p.radius : p.height);
+      // A polygon of 96 sides inscribed in the circle: its widest point is the radius.
+      check(`part ${k} (${p.shape}${p.apex ? ", apex " + p.apex : ""}) at its place and size`,
+            near(s.min[2], p.z0, tol) && near(s.max[2], top, tol) && near(s.max[0], p.radius, tol) && near(s.min[0], -p.radius, tol),
+            `z ${s.min[2].toFixed(5)}..${s.max[2].toFixed(5)} (want ${p.z0}..${top}), x to ${s.max[0].toFixed(5)} (want ${p.radius})`);
+    }
+  } else {
+    check("a body given by its moments is drawn as its ellipsoid", drawn.shapes.length === 1 && drawn.shapes[0].shape === "ellipsoid" && drawn.inScene[0]);
+  }
+  // The floor below the body's lowest point over the whole motion (at O for a top above its
+  // tip), and the camera keeps all of the body in view.
+  const room = async (what) => {
+    const m = await page.evaluate(() => window.heavytopView.measure(80));
+    const D = await page.evaluate(() => ({ length: window.HEAVYTOP_REPORT.body.length }));
+    const size = Math.max(...drawn.shapes.map((s) => (s.max ? Math.max(...s.max.map(Math.abs), ...s.min.map(Math.abs)) : Math.max(...s.semi_axes, Math.abs(s.centre)))));
+    check(`${what}: the floor is below the body's lowest point`, m.floor <= m.lowest + 1e-6 * size,  // float32 vertices
+          `floor ${m.floor.toPrecision(4)} m, lowest point ${m.lowest.toPrecision(4)} m over ${m.times + 1} times`);
+    if (D.length > 0 && m.lowest >= 0) check(`${what}: a top above its tip stands on the floor at O`, m.floor === 0, `floor ${m.floor}`);
+    check(`${what}: the body stays in the camera's view`, m.outside === 0, `${m.outside} corners of its box outside`);
+  };
+  await room("true tilt");
+  // The exaggerated tilt: the picture changes, the drawn tilt is 10 times the true one (at most
+  // pi); for a body never near the vertical the switch is off and says why.
+  const label = await page.$eval("label.exaggerate", (el) => el.textContent.replace(/\s+/g, " ").trim());
+  check("the tilt toggle is labelled as not to scale", /exaggerate tilt x10/.test(label) && /not to scale/.test(label), label);
+  if (await page.$eval("#exaggerate", (el) => el.disabled)) {
+    const least = await page.evaluate(() => {
+      const D = window.HEAVYTOP_REPORT;
+      return Math.min(...D.nonlinear.theta.map((th, i) => Math.acos(Math.cos(th) * Math.cos(D.nonlinear.phi[i]))));
+    });
+    check("the toggle is off only for a body never near the vertical, and says so", 10 * least >= 0.9 * Math.PI && /never nearer the vertical/.test(label),
+          `least tilt ${least.toFixed(3)} rad`);
+  } else {
+    await scrubTo(0.37);
+    const plain = await grab(), vt = await view();
+    await page.click("#exaggerate");
+    await sleep(300);
+    const magnified = await grab(), vx = await view();
+    check("exaggerating the tilt changes the picture", plain !== magnified && vx.exaggerated);
+    check("the drawn tilt is 10 times the true one (at most pi)", near(vx.drawnTilt, Math.min(10 * vx.tilt, Math.PI), 1e-6) && near(vt.tilt, vx.tilt, 1e-12),
+          `true ${vx.tilt.toPrecision(4)} rad, drawn ${vx.drawnTilt.toPrecision(4)} rad`);
+    await (await page.$("#scene")).screenshot({ path: path.join(outDir, `${name}-exaggerated.png`) });
+    await room("tilt x10");
+    await page.click("#exaggerate");
+    await sleep(200);
+    check("the toggle off draws the true tilt again", (await grab()) === plain && !(await view()).exaggerated);
+  }
 
   // The overlays: every approximate model's axis switched on changes the picture.
   const boxes = await page.$$eval("input[id^=overlay-]", (els) => els.map((el) => el.id));

@@ -51,9 +51,9 @@ check "lyapunov at the boundary of (9): critical-quartic, wander 2 asin(sqrt(sin
 import json, math; d = json.load(open("lyap.json"))
 assert list(d)[-2:] == ["lyapunov", "wander"], list(d)
 l = d["lyapunov"]
-assert list(l) == ["verdict", "certificate", "energy_index", "stable_spin_intervals", "superfast_spin"], l
+assert list(l) == ["verdict", "certificate", "energy_index", "stable_spin_intervals", "superfast_spin", "normal_form"], l
 assert l == {"verdict": "stable", "certificate": "critical-quartic", "energy_index": 0,
-             "stable_spin_intervals": [[1.0, None]], "superfast_spin": 1.0}, l
+             "stable_spin_intervals": [[1.0, None]], "superfast_spin": 1.0, "normal_form": None}, l
 assert d["models"]["first-order"]["stable"] is False   # the linear model grows (E2)
 w = d["wander"]
 assert w["method"] == "closed form" and w["horizon"] is None, w
@@ -64,14 +64,20 @@ grep -q "^  Lyapunov: stable (proof: " lyap.txt && grep -q "the linear models gr
 grep -q "^  Axis wander from the given state: largest tilt 0.0447251 rad (closed form)" lyap.txt'
 rm -f lyap.txt
 hang_asym=(--A 1 --B 1.2 --C 0.7 --mass 1 --gravity 1 --length -1 --theta0 1e-4)
-"$H" stability "${hang_asym[@]}" --spin 2 --horizon 20 --format json > undecided.json
-check "index 2, linearly stable, A != B: undecided, certificate none; [0, sqrt 2) proven" python3 -c '
-import json; d = json.load(open("undecided.json")); l = d["lyapunov"]
+"$H" stability "${hang_asym[@]}" --spin 2 --horizon 20 --format json > kam.json
+check "index 2, linearly stable, A != B: stable by Arnold (kam), the normal form; [0, sqrt 2) and above sqrt(1/0.3) proven" python3 -c '
+import json; d = json.load(open("kam.json")); l = d["lyapunov"]
 assert d["models"]["linearized"]["stable"] is True
-assert (l["verdict"], l["certificate"], l["energy_index"], l["superfast_spin"]) == ("undecided", "none", 2, None), l
-assert l["stable_spin_intervals"] == [[0.0, 2 ** 0.5]], l
+assert (l["verdict"], l["certificate"], l["energy_index"], l["superfast_spin"]) == ("stable", "kam", 2, None), l
+assert l["stable_spin_intervals"][0] == [0.0, 2 ** 0.5] and abs(l["stable_spin_intervals"][1][0] - (1 / 0.3) ** 0.5) < 1e-12, l
+assert l["stable_spin_intervals"][1][1] is None, l
+n = l["normal_form"]; assert set(n) == {"frequencies", "c20", "c11", "c02", "D", "resonance", "a13"}, n
+w1, w2 = n["frequencies"]; assert abs(n["D"] - (n["c20"] * w2 ** 2 + n["c11"] * w1 * w2 + n["c02"] * w1 ** 2)) < 1e-12 * abs(n["D"]), n
+assert n["resonance"] is None and n["a13"] is None, n
 w = d["wander"]; assert w["method"] == "integrated" and w["horizon"] == 20.0 and 1e-4 <= w["max_tilt"] < 1.2e-4, w'
-check "undecided text says the KAM test is not built" bash -c "'$H' stability ${hang_asym[*]} --spin 2 --horizon 20 | grep -q 'Lyapunov: undecided (index 2: gyroscopic stability only, destroyed by internal damping; the KAM test is not built'"
+rm -f kam.json
+check "kam text: the proof holds for perturbations small enough, the distance to a resonance" bash -c "'$H' stability ${hang_asym[*]} --spin 2 --horizon 20 > kam.txt && grep -q 'Lyapunov: stable (proof (for perturbations small enough): Arnold' kam.txt && grep -q 'holds for perturbations small enough' kam.txt && grep -q 'from the nearest resonance that matters' kam.txt"
+rm -f kam.txt
 check "odd index" bash -c "'$H' stability ${hang_asym[*]} --spin 1.6 --horizon 5 --format json | python3 -c 'import json,sys; l = json.load(sys.stdin)[\"lyapunov\"]; assert (l[\"verdict\"], l[\"certificate\"], l[\"energy_index\"]) == (\"unstable\", \"odd-index\", 1), l'"
 
 # No spin stabilises the body-fixed model of a sphere-like body: critical_spin null.

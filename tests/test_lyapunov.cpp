@@ -285,13 +285,17 @@ TEST(Lyapunov, HangingBodies) {
   const Body asym = make_body(1.0, 1.2, 0.7, -1.0);
   EXPECT_EQ(lyapunov_stability(asym, 1.2).certificate, Cert::EnergyCasimir);
   EXPECT_EQ(lyapunov_stability(asym, 1.6).certificate, Cert::OddIndex);
-  const auto high = lyapunov_stability(asym, 2.0);  // index 2, linearly stable: not decided
+  const auto high = lyapunov_stability(asym, 2.0);  // index 2, linearly stable: Arnold's theorem
   EXPECT_EQ(high.energy_index, 2);
-  EXPECT_EQ(high.verdict, V::Undecided);
-  EXPECT_EQ(high.certificate, Cert::None);
-  EXPECT_NE(high.reason.find("KAM test is not built"), std::string::npos);
+  EXPECT_EQ(high.verdict, V::Stable);
+  EXPECT_EQ(high.certificate, Cert::Kam);
+  ASSERT_TRUE(high.normal_form.has_value());
+  EXPECT_NE(high.normal_form->D, 0.0);
   const auto window = lyapunov_stable_spin_intervals(asym);
-  ASSERT_EQ(window.size(), 1u);
+  ASSERT_EQ(window.size(), 2u);  // the energy-Casimir window, then the KAM spins above index 1
+  EXPECT_NEAR(window[1].lo, std::sqrt(1.0 / 0.3), 1e-12);
+  EXPECT_FALSE(window[1].lo_included);
+  EXPECT_FALSE(window[1].hi);
   EXPECT_EQ(window[0].lo, 0.0);
   EXPECT_TRUE(window[0].lo_included);
   ASSERT_TRUE(window[0].hi);

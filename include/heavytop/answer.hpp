@@ -72,6 +72,9 @@ struct Answer {
   /// = 4 A m g R: "below it, it would fall"); false when below it stability is only unproven.
   bool falls_below_min_spin = false;
   std::optional<double> lifetime;   ///< s, a damped body's fall time (= falls_at), else nullopt
+  /// true when the proof holds for disturbances small enough only, with no size given (a KAM
+  /// certificate, SPEC 7): the words say so.
+  bool small_disturbances_only = false;
   bool damped = false;              ///< the damping (SPEC 6) was taken into account
   bool hanging = false;             ///< the centre of mass is below the pivot (length < 0)
   /// rad/s, for a damped body: the critical spin its spin decays to (lifetime's), nullopt else.

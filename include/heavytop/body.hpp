@@ -85,6 +85,13 @@ double gravity_time(const Body& body) noexcept;
 /// principal moments satisfying the triangle inequalities (key: the first nonzero product).
 void validate(const Body& body);
 
+/// False when the body cannot exist as given (SPEC section 1): its central moments of inertia
+/// (about the centre of mass) break a triangle inequality, A + B - C < 2 m R^2 for the body of
+/// SPEC section 1 (a scaled input such as m = g = R = 1, often), the principal central
+/// moments' for the general body of section 11; to 1e-9 of the trace (a flat disc on the axis
+/// is exactly on the edge). Callers warn and go on.
+bool is_realizable(const Body& body);
+
 /// True if the body has a nonzero term of SPEC section 11 (body.general not zero).
 bool is_general(const Body& body) noexcept;
 

@@ -17,6 +17,7 @@
 #include "heavytop/stability.hpp"       // linear stability and the stable spins
 #include "heavytop/answer.hpp"          // the answer first: does it stay up, for how long (SPEC 14)
 #include "heavytop/lyapunov.hpp"        // the real body's Lyapunov verdict and the wander
+#include "heavytop/normal_form.hpp"     // the order-4 Birkhoff normal form (Arnold, Markeev)
 #include "heavytop/linear_motion.hpp"   // motion of the linear models
 #include "heavytop/nonlinear.hpp"       // the full rigid body, integrated adaptively
 #include "heavytop/splitting.hpp"       // the structure-preserving splitting integrator

@@ -78,7 +78,9 @@ std::string answer_reason(const Answer& a) {
         return fmt::format("Spinning at {} and {}, {} keeps its axis within {} of vertical; its upright spin is "
                            "proven stable.",
                            spin_words(a.spin), start_words(a), body, angle_words(*a.max_tilt));
-      std::string s = fmt::format("Spinning at {} {} is proven stable", spin_words(a.spin), body);
+      std::string s = fmt::format("Spinning at {} {} is proven stable{}", spin_words(a.spin), body,
+                                  a.small_disturbances_only ? " against small enough disturbances (Arnold's theorem)"
+                                                            : "");
       if (a.max_tilt) s += fmt::format("; its axis stays within {} of vertical", angle_words(*a.max_tilt));
       return s + ".";
     }
@@ -122,7 +124,9 @@ const char* const kStabilityGlossary =
     "(nonlinear) body, for ever.\n"
     "  certificate: the argument that proves the verdict (energy-casimir: the energy at fixed momentum is a "
     "minimum; chetaev: Chetaev's function for the symmetric top; critical-quartic: the quartic term at the "
-    "boundary; odd-index: one stiffness negative, a real growth; linear-instability: the linearisation grows).\n"
+    "boundary; odd-index: one stiffness negative, a real growth; linear-instability: the linearisation grows; kam, "
+    "kam-markeev: Arnold's (Markeev's at 1:3) theorem on the order-4 normal form, for disturbances small enough; "
+    "resonance: unstable at the 1:3 resonance).\n"
     "  energy index: how many of the two stiffnesses s1, s2 are negative (0: stable by energy alone).\n"
     "  Jordan block: a double eigenvalue whose motion grows like t (unstable in a linear model).\n"
     "  growth rate: the largest real part of the eigenvalues (1/s); > 0 means the motion grows.\n";

@@ -50,6 +50,14 @@ std::string body_json(const AssembledBody& body, double gravity) {
   out["offset"] = {{"x", a.offset_x}, {"y", a.offset_y}};
   out["principal_axis_tilt"] = a.principal_tilt;
   out["general"] = a.general();
+  Body as_given;
+  as_given.A = a.A;
+  as_given.B = a.B;
+  as_given.C = a.C;
+  as_given.mass = a.total.mass;
+  as_given.length = a.length;
+  as_given.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
+  if (!is_realizable(as_given)) out["realizable"] = false;  // SPEC section 1
   Json parts = Json::array();
   for (std::size_t i = 0; i < body.names.size() && i < body.parts.size(); ++i) {
     const MassProperties& p = body.parts[i];
@@ -110,6 +118,7 @@ std::string precession_json(const Body& body, double tilt, double spin, const Pr
   Json out;
   out["body"] = {{"A", body.A}, {"B", body.B}, {"C", body.C}, {"mass", body.mass}, {"gravity", body.gravity},
                  {"length", body.length}};
+  if (!is_realizable(body)) out["realizable"] = false;  // SPEC section 1, beside the body
   out["tilt"] = tilt;
   out["spin"] = spin;
   auto optional = [](const std::optional<double>& x) { return x ? Json(*x) : Json(nullptr); };

@@ -43,6 +43,7 @@ namespace {
 Json stability_object(const Body& body, double spin, const std::vector<ModelStability>& models, Json answer) {
   Json out;
   out["body"] = body_json(body);
+  if (!is_realizable(body)) out["realizable"] = false;  // SPEC section 1, beside the body
   add_damping(out, body);
   out["spin"] = spin;
   out["answer"] = std::move(answer);  // SPEC 14: what a person asks first
@@ -69,6 +70,20 @@ Json stability_object(const Body& body, double spin, const std::vector<ModelStab
 
 
 namespace {
+
+/// SPEC section 7's "normal_form" object (null outside index 2 with a stable linearisation).
+Json normal_form_json(const std::optional<NormalForm>& nf) {
+  if (!nf) return nullptr;
+  Json n;
+  n["frequencies"] = {nf->w1, nf->w2};
+  n["c20"] = nf->c20;
+  n["c11"] = nf->c11;
+  n["c02"] = nf->c02;
+  n["D"] = nf->D;
+  n["resonance"] = nf->resonance == 2 || nf->resonance == 3 ? Json(std::string(resonance_name(nf->resonance))) : Json(nullptr);
+  n["a13"] = optional_number(nf->a13);
+  return n;
+}
 
 Json intervals_json(const std::vector<SpinInterval>& intervals) {
   Json a = Json::array();
@@ -105,6 +120,7 @@ std::string stability_json(const Body& body, const TopAnalysis& analysis) {
   l["energy_index"] = lyapunov.verdict.energy_index;
   l["stable_spin_intervals"] = intervals_json(lyapunov.intervals);
   l["superfast_spin"] = optional_number(lyapunov.superfast);
+  l["normal_form"] = normal_form_json(lyapunov.verdict.normal_form);
   out["lyapunov"] = l;
   Json w;
   w["max_tilt"] = optional_number(wander.max_tilt);
@@ -195,6 +211,43 @@ std::string linear_stability_text(const Body& body, double spin, const std::vect
 
 }  // namespace
 
+namespace {
+
+/// The lines under the Lyapunov verdict at index 2 (SPEC section 7): the normal form, that a
+/// KAM verdict holds for perturbations small enough, and how far the spin is from a resonance
+/// or from D = 0.
+std::string normal_form_text(const LyapunovVerdict& v, double spin, const std::vector<SpinInterval>& intervals) {
+  if (!v.normal_form)
+    return "  Not decided: w1 = w2 (the 1:1 resonance), where Arnold's theorem does not apply; "
+           "internal damping (energy lost at constant momentum) destroys this rotation.\n";
+  const NormalForm& nf = *v.normal_form;
+  const ResonanceDistance near = resonance_distance(nf);
+  std::string text = fmt::format(
+      "  Normal form (order 4): w1 = {:.6g}, w2 = {:.6g} rad/s; c20 = {:.6g}, c11 = {:.6g}, c02 = {:.6g}; "
+      "D = {:.6g} (|D| = {:.3g} of |c20| w2^2 + |c11| w1 w2 + |c02| w1^2; 0 would be undecided){}\n",
+      nf.w1, nf.w2, nf.c20, nf.c11, nf.c02, nf.D, nf.D_scale > 0.0 ? std::abs(nf.D) / nf.D_scale : 0.0,
+      nf.resonance == 2 || nf.resonance == 3
+          ? fmt::format("; at the {} resonance{}", resonance_name(nf.resonance),
+                        nf.a13 ? fmt::format(", a13 = {:.6g}", *nf.a13) : std::string(" (harmless: no cubic terms)"))
+          : std::string());
+  text += fmt::format("  Frequency ratio w1/w2 = {:.6g}, {:.3g} (relative) from the nearest resonance that matters ({})",
+                      nf.w1 / nf.w2, near.distance, near.nearest);
+  for (const auto& i : intervals)
+    if (spin >= i.lo && (!i.hi || spin <= *i.hi)) {
+      text += fmt::format("; the spins proven stable around this one: {} rad/s", intervals_text({i}));
+      break;
+    }
+  text += ".\n";
+  if (v.verdict == LyapunovVerdictKind::Stable)
+    text += "  The KAM verdict holds for perturbations small enough (the theorem gives no size); internal "
+            "damping (energy lost at constant momentum) destroys this rotation.\n";
+  else if (v.verdict == LyapunovVerdictKind::Undecided)
+    text += "  Not decided: the order-4 normal form is degenerate here; order 6 would decide.\n";
+  return text;
+}
+
+}  // namespace
+
 std::string stability_text(const Body& body, const TopAnalysis& analysis) {
   const double spin = analysis.spin;
   const auto& [_, models, lyapunov, wander, answer] = analysis;
@@ -217,9 +270,8 @@ std::string stability_text(const Body& body, const TopAnalysis& analysis) {
   if (v.certificate == LyapunovCertificate::CriticalQuartic)
     out << "  At the boundary of (9) the linear models grow (a Jordan block, erratum E2), but the real "
            "symmetric top does not: started delta off vertical its tilt stays below about sqrt(2 delta).\n";
-  if (v.verdict == LyapunovVerdictKind::Undecided && v.energy_index == 2)
-    out << "  Not decided: only the KAM (Arnold-Moser) test could decide it, and it is not built; "
-           "internal damping (energy lost at constant momentum) destroys this rotation.\n";
+  if (v.energy_index == 2 && (v.normal_form || v.verdict == LyapunovVerdictKind::Undecided))
+    out << normal_form_text(v, spin, lyapunov.intervals);
   if (wander.max_tilt)
     out << fmt::format("  Axis wander from the given state: largest tilt {:.6g} rad ({})\n", *wander.max_tilt,
                        wander.closed_form ? "closed form"
@@ -323,6 +375,7 @@ std::string trajectory_json(Model model, const Body& body, const InitialState& s
   Json out;
   out["model"] = std::string(name(model));
   out["body"] = body_json(body);
+  if (!is_realizable(body)) out["realizable"] = false;  // SPEC section 1, beside the body
   out["motion"] = {{"spin", s.spin}, {"theta0", s.theta0}, {"phi0", s.phi0},
                    {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}};
   const auto names = tr.column_names();

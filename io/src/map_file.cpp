@@ -4,11 +4,14 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
+#include "heavytop/io/config.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/linear_models.hpp"
@@ -22,17 +25,50 @@ namespace {
 
 constexpr LyapunovCertificate kCertificates[] = {
     LyapunovCertificate::EnergyCasimir, LyapunovCertificate::Chetaev,           LyapunovCertificate::CriticalQuartic,
-    LyapunovCertificate::OddIndex,      LyapunovCertificate::LinearInstability, LyapunovCertificate::None};
+    LyapunovCertificate::OddIndex,      LyapunovCertificate::LinearInstability, LyapunovCertificate::None,
+    LyapunovCertificate::Kam,           LyapunovCertificate::KamMarkeev,        LyapunovCertificate::Resonance};
 constexpr std::string_view kVerdictColumns[] = {"first-order", "body-fixed", "linearized", "lyapunov"};
 constexpr const char* kFormatName = "heavytop stability map 1";
 constexpr std::size_t kRowsPerBlock = 1 << 20;  // of a map file, written or read at a time
 
+/// Throws InvalidInput unless `path` is a regular file (a device such as /dev/zero, a FIFO or
+/// a folder would be read forever, or not at all); returns its size.
+std::uintmax_t map_file_size(const std::string& path, const std::string& key) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InvalidInput(key, fmt::format("cannot read '{}': no such file", printable(path)));
+  if (!std::filesystem::is_regular_file(status))
+    throw InvalidInput(key, fmt::format("'{}' is not a regular file (a map is a file heavytop sweep wrote)", printable(path)));
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
+  return size;
+}
+
 std::string read_whole(const std::string& path, const std::string& key) {
+  const std::uintmax_t size = map_file_size(path, key);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  if (!in) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
+  // A CSV map's size is bounded by its header: at most kMaxSweepPoints rows of at most 32
+  // bytes a column (a double's shortest form is at most 24 characters, a certificate 18).
+  std::string header(4096, '\0');
+  in.read(header.data(), static_cast<std::streamsize>(header.size()));
+  header.resize(static_cast<std::size_t>(in.gcount()));
+  header = header.substr(0, header.find('\n'));
+  in.clear();
+  const std::size_t columns = 1 + static_cast<std::size_t>(std::count(header.begin(), header.end(), ','));
+  if (size > header.size() + 1 + kMaxSweepPoints * 32 * columns)
+    throw InvalidInput(key, fmt::format("'{}' is larger than a map of {} points can be", printable(path), kMaxSweepPoints));
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.seekg(0);
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return text;
+}
+
+/// A cell as it goes into a one-line message: control characters shown, at most 40 bytes
+/// (fuzz_map: a cell with a carriage return broke the message's line).
+std::string cell_shown(std::string_view cell) {
+  return printable(cell.size() > 40 ? std::string(cell.substr(0, 40)) + "..." : std::string(cell));
 }
 
 /// The axes (keys and values, exact) of rows whose first columns are a row-major grid.
@@ -46,7 +82,8 @@ std::vector<MapAxis> grid_of_rows(const std::vector<std::string>& keys, const st
     MapAxis axis{.key = keys[k], .values = {}};
     std::size_t run = 1;
     while (run < inner && rows[run][k] == rows[0][k]) ++run;
-    if (run == 0 || inner % run != 0) throw InvalidInput(key, fmt::format("the rows are not a grid of '{}'", keys[k]));
+    if (run == 0 || inner % run != 0)
+      throw InvalidInput(key, fmt::format("the rows are not a grid of '{}'", cell_shown(keys[k])));
     for (std::size_t i = 0; i < inner; i += run) axis.values.push_back(rows[i][k]);
     points *= axis.values.size();
     inner = run;
@@ -57,7 +94,7 @@ std::vector<MapAxis> grid_of_rows(const std::vector<std::string>& keys, const st
     std::size_t index = r;
     for (std::size_t k = axes.size(); k-- > 0;) {
       if (rows[r][k] != axes[k].values[index % axes[k].values.size()])
-        throw InvalidInput(key, fmt::format("row {}: '{}' is not the grid's value there", r + 2, keys[k]));
+        throw InvalidInput(key, fmt::format("row {}: '{}' is not the grid's value there", r + 2, cell_shown(keys[k])));
       index /= axes[k].values.size();
     }
   }
@@ -102,7 +139,7 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
     for (std::size_t k = 0; k < keys.size(); ++k) {
       const auto [p, ec] = std::from_chars(cells[k].data(), cells[k].data() + cells[k].size(), point[k]);
       if (ec != std::errc() || p != cells[k].data() + cells[k].size())
-        throw InvalidInput(key, fmt::format("row {}: '{}' is not a number", row + 1, cells[k]));
+        throw InvalidInput(key, fmt::format("row {}: '{}' is not a number", row + 1, cell_shown(cells[k])));
     }
     auto flag = [&](std::size_t c) {
       if (cells[c] != "0" && cells[c] != "1")
@@ -116,7 +153,8 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
     const auto certificate = std::find_if(std::begin(kCertificates), std::end(kCertificates),
                                           [&](LyapunovCertificate x) { return name(x) == cells[c + 4]; });
     if (certificate == std::end(kCertificates))
-      throw InvalidInput(key, fmt::format("row {}: '{}' is not a certificate (SPEC section 7)", row + 1, cells[c + 4]));
+      throw InvalidInput(key, fmt::format("row {}: '{}' is not a certificate (SPEC section 7)", row + 1,
+                                          cell_shown(cells[c + 4])));
     v.lyapunov_certificate = *certificate;
     if (nonlinear) v.nonlinear = flag(c + 5);
   }
@@ -165,7 +203,7 @@ void pack_verdicts(const std::vector<SweepVerdict>& verdicts, std::string& out) 
 std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
   if (bytes.size() % kPackedVerdictSize != 0) throw Failure("packed verdicts: a record is torn");
   std::vector<SweepVerdict> out(bytes.size() / kPackedVerdictSize);
-  constexpr auto kLast = static_cast<unsigned char>(LyapunovCertificate::None);
+  constexpr auto kLast = static_cast<unsigned char>(kLastLyapunovCertificate);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const auto* r = reinterpret_cast<const unsigned char*>(bytes.data() + i * kPackedVerdictSize);
     if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || r[5] > 2)
@@ -175,6 +213,71 @@ std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
                           .nonlinear = r[5] == 2 ? std::nullopt : std::optional<bool>(r[5] == 1)};
   }
   return out;
+}
+
+namespace {
+
+bool proves_stable(LyapunovCertificate c) {
+  return c == LyapunovCertificate::EnergyCasimir || c == LyapunovCertificate::Chetaev ||
+         c == LyapunovCertificate::CriticalQuartic;
+}
+
+}  // namespace
+
+std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
+                                  bool packed) {
+  const std::size_t total = grid_size(axes);
+  std::size_t n = 0;
+  if (packed) {
+    for (; n < total && (n + 1) * kPackedVerdictSize <= records.size(); ++n) {
+      const auto* r = reinterpret_cast<const unsigned char*>(records.data() + n * kPackedVerdictSize);
+      if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > static_cast<unsigned char>(LyapunovCertificate::None))
+        break;
+      if ((r[3] == 1) != proves_stable(static_cast<LyapunovCertificate>(r[4]))) break;
+      if (nonlinear ? r[5] > 1 : r[5] != 2) break;
+    }
+    return n;
+  }
+  const std::size_t cells = axes.size() + 5 + (nonlinear ? 1 : 0);
+  std::vector<std::string_view> cell;
+  for (std::size_t at = 0; n < total && at < records.size(); ++n) {
+    const std::size_t end = records.find('\n', at);
+    if (end == std::string_view::npos) break;  // torn
+    const std::string_view line = records.substr(at, end - at + 1);
+    at = end + 1;
+    cell.clear();
+    for (std::size_t from = 0;;) {
+      const std::size_t comma = line.find(',', from);
+      cell.push_back(line.substr(from, comma == std::string_view::npos ? line.size() - 1 - from : comma - from));
+      if (comma == std::string_view::npos) break;
+      from = comma + 1;
+    }
+    if (cell.size() != cells) break;
+    auto flag = [](std::string_view c) { return c == "0" ? 0 : c == "1" ? 1 : -1; };
+    SweepVerdict v;
+    bool ok = true;
+    const std::size_t c = axes.size();
+    for (std::size_t m = 0; m < 3; ++m) {
+      const int f = flag(cell[c + m]);
+      ok = ok && f >= 0;
+      v.linear[m] = f == 1;
+    }
+    const int lyapunov = flag(cell[c + 3]);
+    ok = ok && lyapunov >= 0;
+    v.lyapunov = lyapunov == 1;
+    const auto certificate = std::find_if(std::begin(kCertificates), std::end(kCertificates),
+                                          [&](LyapunovCertificate x) { return name(x) == cell[c + 4]; });
+    ok = ok && certificate != std::end(kCertificates) && proves_stable(*certificate) == v.lyapunov;
+    if (!ok) break;
+    v.lyapunov_certificate = *certificate;
+    if (nonlinear) {
+      const int f = flag(cell[c + 5]);
+      if (f < 0) break;
+      v.nonlinear = f == 1;
+    }
+    if (sweep_csv_rows(axes, n, {v}) != line) break;  // the varied values at their grid point, exactly
+  }
+  return n;
 }
 
 #ifndef HEAVYTOP_HAVE_HDF5
@@ -284,15 +387,16 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
 }
 
 StabilityMap read_map(const std::string& path, const std::string& key) {
+  map_file_size(path, key);
   {
     std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", path));
+    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
     char magic[4] = {};
     probe.read(magic, 4);
     if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
   }
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  const std::string bad = fmt::format("'{}' is not a heavytop map file", path);
+  const std::string bad = fmt::format("'{}' is not a heavytop map file", printable(path));
   const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (file < 0) throw InvalidInput(key, bad + " (HDF5 cannot open it)");
   auto read_attribute = [&](hid_t on, const char* name, hid_t type, void* value) {
@@ -318,6 +422,14 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     const Handle space(H5Dget_space(d), H5Sclose);
     if (H5Sget_simple_extent_ndims(space) != 1 || H5Sget_simple_extent_npoints(space) != hssize_t(expected))
       throw InvalidInput(key, fmt::format("{} (dataset '{}' must have {} elements)", bad, name, expected));
+    // Only the layout and the element size heavytop writes (chunked, 8-byte axes, 1-byte
+    // verdicts) reach H5Dread: a mutated compact layout made HDF5 read past its own buffer
+    // (fuzz_map, issue 30), which HDF5 does not check.
+    const Handle create(H5Dget_create_plist(d), H5Pclose);
+    const Handle type(H5Dget_type(d), H5Tclose);
+    if (create < 0 || H5Pget_layout(create) != H5D_CHUNKED || type < 0 ||
+        H5Tget_size(type) != sizeof(typename std::decay_t<decltype(out)>::value_type))
+      throw InvalidInput(key, fmt::format("{} (dataset '{}' is not laid out as heavytop writes it)", bad, name));
     out.resize(expected);
     if (H5Dread(d, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
       throw InvalidInput(key, fmt::format("{} (dataset '{}' cannot be read)", bad, name));
@@ -346,7 +458,7 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     const std::string name = c < 4 ? std::string(kVerdictColumns[c]) : c == 4 ? "lyapunov_certificate" : "nonlinear";
     read_column(name, c == 4 ? hid_t(certificates) : H5T_NATIVE_UINT8, points, column);
     for (std::size_t i = 0; i < points; ++i) {
-      if (column[i] > (c == 4 ? std::uint8_t(LyapunovCertificate::None) : 1))
+      if (column[i] > (c == 4 ? std::uint8_t(kLastLyapunovCertificate) : 1))
         throw InvalidInput(key, fmt::format("{} (dataset '{}': a value out of range)", bad, name));
       SweepVerdict& v = map.verdicts[i];
       if (c < 3) v.linear[c] = column[i];

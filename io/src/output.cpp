@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -31,6 +32,19 @@ mode_t new_file_mode() {
   return mode;
 }
 
+/// The name of a hidden file beside one called `filename`: "." + filename + suffix, or, when
+/// that is longer than a file name may be (NAME_MAX, 255 bytes; a legal 250-byte name would
+/// not take ".tmp-XXXXXX"), the name cut short with a hash of the whole name in its place,
+/// the same for every process (the lock file must be).
+std::string hidden_beside(const std::string& filename, const std::string& suffix) {
+  constexpr std::size_t kNameMax = 255;
+  if (1 + filename.size() + suffix.size() <= kNameMax) return fmt::format(".{}{}", filename, suffix);
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : filename) h = (h ^ c) * 1099511628211ull;
+  const std::size_t kept = kNameMax - 1 - 17 - suffix.size();  // 17: "-" and 16 hex digits
+  return fmt::format(".{}-{:016x}{}", filename.substr(0, kept), h, suffix);
+}
+
 /// A unique temporary file beside `target`, with the mode `target` has (or would get).
 /// Returns its path and an open descriptor.
 std::pair<std::string, int> temporary_beside(const std::string& target, const std::string& key) {
@@ -39,7 +53,7 @@ std::pair<std::string, int> temporary_beside(const std::string& target, const st
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     throw InvalidInput(key, fmt::format("the folder '{}' does not exist", dir.string()));
-  std::string pattern = (dir / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
+  std::string pattern = (dir / hidden_beside(path.filename().string(), ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(pattern.data());
   if (fd < 0)
     throw InvalidInput(key, fmt::format("cannot create a file in '{}': {}", dir.string(), std::strerror(errno)));
@@ -97,7 +111,7 @@ void remove_temporaries_on_signals() {
 
 OutputLock::OutputLock(const std::string& path, const std::string& key, const std::string& shown) {
   const fs::path target(path);
-  lock_path_ = (target.parent_path() / ("." + target.filename().string() + ".lock")).string();
+  lock_path_ = (target.parent_path() / hidden_beside(target.filename().string(), ".lock")).string();
   for (;;) {
     fd_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd_ < 0) {
@@ -190,8 +204,18 @@ void OutputStream::commit() {
 std::string resolved(const std::string& path) {
   std::error_code ec;
   if (!fs::is_symlink(path, ec)) return path;
-  const fs::path target = fs::weakly_canonical(path, ec);
-  return ec ? path : target.string();
+  // Link by link (a dangling link's target is the file to create, not the link to replace;
+  // weakly_canonical() stops at a name that does not exist and so gave the link itself).
+  fs::path p(path);
+  for (int hops = 0; hops < 40 && fs::is_symlink(p, ec); ++hops) {
+    const fs::path target = fs::read_symlink(p, ec);
+    if (ec) return path;
+    p = target.is_absolute() ? target : (p.parent_path() / target);
+  }
+  if (fs::is_symlink(p, ec)) return path;  // a loop: left to the caller's open() to refuse
+  // The real folder (its own links resolved) and the final name.
+  const fs::path folder = fs::weakly_canonical(p.has_parent_path() ? p.parent_path() : fs::path("."), ec);
+  return ec ? p.lexically_normal().string() : (folder / p.filename()).string();
 }
 
 bool is_regular_target(const std::string& path) { return !path.empty() && path != "-" && !is_special(path); }

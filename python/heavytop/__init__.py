@@ -36,7 +36,7 @@ from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
                    precession, read_map, rpm, simulate, stability, sweep)
 from . import results
-from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov,
+from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov, NormalForm,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
                       StabilityMap, Trajectory, Wander, Answer)
 
@@ -45,6 +45,6 @@ __all__ = [
     "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
     "body_from_parts", "body_report", "precession", "rpm",
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
-    "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov",
+    "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov", "NormalForm",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
 ]

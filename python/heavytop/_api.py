@@ -62,9 +62,11 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
     "frequencies": [...], "reason": str}, "body-fixed": {...}, "linearized": {...}}}. The
     linearized model's eigenvalues are those of its body-frame system.
     .lyapunov (a Lyapunov: .verdict "stable" | "unstable" | "undecided", .certificate,
-    .energy_index 0 | 1 | 2, .stable_spin_intervals (rad/s), .superfast_spin (rad/s or None);
-    the KAM test is not built: an asymmetric body of index 2 that is linearly stable is
-    "undecided", certificate "none") and .wander (a Wander: .max_tilt rad or None, .method
+    .energy_index 0 | 1 | 2, .stable_spin_intervals (rad/s), .superfast_spin (rad/s or None),
+    .normal_form: for an asymmetric body of index 2 that is linearly stable, a NormalForm
+    (.frequencies (w1, w2) rad/s, .c20, .c11, .c02, .D, .resonance, .a13) on which Arnold's
+    theorem decides ("kam"; "kam-markeev" or "resonance" at 1:3; "undecided" at D = 0 or 1:1),
+    else None) and .wander (a Wander: .max_tilt rad or None, .method
     "closed form" | "integrated", .horizon s or None) are result["lyapunov"] and result["wander"].
 
     Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".

@@ -100,28 +100,60 @@ class ModelStability(JsonResult):
 
 
 @dataclass(frozen=True, eq=False)
+class NormalForm(JsonResult):
+    """The order-4 Birkhoff normal form of the reduced system (SPEC section 7):
+    H = w1 r1 - w2 r2 + c20 r1^2 + c11 r1 r2 + c02 r2^2 + ..., r_i the mode actions (J s)."""
+
+    frequencies: Tuple[float, float]
+    """rad/s, (w1, w2): w1 the mode of positive Krein signature, w2 the other."""
+    c20: float
+    """1/(J s^2), coefficient of r1^2."""
+    c11: float
+    """1/(J s^2), coefficient of r1 r2."""
+    c02: float
+    """1/(J s^2), coefficient of r2^2."""
+    D: float
+    """1/(J s^4), c20 w2^2 + c11 w1 w2 + c02 w1^2 (Arnold's determinant)."""
+    resonance: Optional[str]
+    """None | "1:2" | "1:3"."""
+    a13: Optional[float]
+    """1/(J s^2), the resonant harmonic's amplitude at 1:3; None otherwise."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "NormalForm":
+        return cls(frequencies=(data["frequencies"][0], data["frequencies"][1]), c20=data["c20"], c11=data["c11"],
+                   c02=data["c02"], D=data["D"], resonance=data["resonance"], a13=data["a13"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
 class Lyapunov(JsonResult):
     """The real body's Lyapunov verdict at the spin asked (SPEC section 7; conservative body,
-    upright permanent rotation). The KAM test is not built: an asymmetric body of energy index 2
-    whose linearisation is stable is "undecided" with certificate "none"."""
+    upright permanent rotation). An asymmetric body of energy index 2 whose linearisation is
+    stable is decided on its order-4 Birkhoff normal form (Arnold; Markeev at 1:3)."""
 
     verdict: str
     """"stable" | "unstable" | "undecided"."""
     certificate: str
-    """"energy-casimir" | "chetaev" | "critical-quartic" | "odd-index" | "linear-instability" | "none"."""
+    """"energy-casimir" | "chetaev" | "critical-quartic" | "kam" | "kam-markeev" | "odd-index" |
+    "linear-instability" | "resonance" | "none"."""
     energy_index: int
     """The number of negative stiffnesses among s1 = (C - A) w0^2 - m g R, s2 = (C - B) w0^2 - m g R (N m)."""
     stable_spin_intervals: Tuple[Tuple[float, Optional[float]], ...]
     """rad/s, the spins the verdict proves stable, as (lo, hi) pairs; hi None: and above."""
     superfast_spin: Optional[float]
     """rad/s, the smallest spin above which the energy index stays 0; None when it never does."""
+    normal_form: Optional[NormalForm]
+    """Index 2 with a stable linearisation: the normal form the verdict rests on; else None."""
     _data: Dict[str, Any] = field(repr=False)
 
     @classmethod
     def from_json(cls, data: Dict[str, Any]) -> "Lyapunov":
+        nf = data.get("normal_form")
         return cls(verdict=data["verdict"], certificate=data["certificate"], energy_index=data["energy_index"],
                    stable_spin_intervals=tuple((lo, hi) for lo, hi in data["stable_spin_intervals"]),
-                   superfast_spin=data["superfast_spin"], _data=data)
+                   superfast_spin=data["superfast_spin"],
+                   normal_form=None if nf is None else NormalForm.from_json(nf), _data=data)
 
 
 @dataclass(frozen=True, eq=False)

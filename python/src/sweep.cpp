@@ -109,7 +109,7 @@ py::dict map_columns(const StabilityMap& map) {
   // The certificates' names, as a NumPy array of strings (the CLI's column): the names
   // indexed by each point's code (one Python string per name, not per point).
   py::list names;
-  for (int c = 0; c <= static_cast<int>(LyapunovCertificate::None); ++c)
+  for (int c = 0; c <= static_cast<int>(kLastLyapunovCertificate); ++c)
     names.append(py::str(std::string(name(static_cast<LyapunovCertificate>(c)))));
   py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(total));
   std::uint8_t* code = codes.mutable_data();

@@ -222,9 +222,19 @@ def test_lyapunov_values():
     mid = heavytop.stability(body, 1.2).lyapunov
     assert (mid.verdict, mid.certificate, mid.energy_index) == ("unstable", "odd-index", 1)
     assert heavytop.stability(body, 1.5).lyapunov.superfast_spin == math.sqrt(2.0)
-    # Index 2, linearly stable, A != B: undecided (the KAM test is not built).
+    # Index 2, linearly stable, A != B: Arnold's theorem on the normal form (kam).
     hanging = heavytop.Body(1.0, 1.2, 0.7, mass=1.0, length=-1.0, gravity=1.0)
-    undecided = heavytop.stability(hanging, 2.0).lyapunov
-    assert (undecided.verdict, undecided.certificate, undecided.energy_index) == ("undecided", "none", 2)
+    kam = heavytop.stability(hanging, 2.0).lyapunov
+    assert (kam.verdict, kam.certificate, kam.energy_index) == ("stable", "kam", 2)
+    nf = kam.normal_form
+    assert isinstance(nf, heavytop.NormalForm) and nf.to_dict() == kam["normal_form"]
+    w1, w2 = nf.frequencies
+    assert abs(nf.D - (nf.c20 * w2 ** 2 + nf.c11 * w1 * w2 + nf.c02 * w1 ** 2)) < 1e-12 * abs(nf.D)
+    assert nf.resonance is None and nf.a13 is None
+    # E7's worked example (paper-notes): the printed digits.
+    e7 = heavytop.stability(heavytop.Body(1.0, 1.5, 0.5, mass=1.0, length=1.0, gravity=1.0), 6.0).lyapunov.normal_form
+    assert [round(x, 6) for x in (*e7.frequencies, e7.c20, e7.c11, e7.c02)] == [5.604869, 3.862483, 1.213458, -0.68126, 0.604105]
+    assert round(e7.D, 4) == 22.3326
+    assert heavytop.stability(top, 200.0).lyapunov.normal_form is None  # Chetaev: no normal form needed
     with pytest.raises(heavytop.InvalidInput, match="horizon"):
         heavytop.stability(top, 200.0, horizon=0.0)

@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "heavytop/io/config.hpp"
 #include "heavytop/io/formats.hpp"
+#include "heavytop/io/mesh_file.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/report/animation.hpp"
 #include "heavytop/report/figures.hpp"
@@ -121,11 +123,80 @@ std::string comparison_html(const Comparison& c) {
 /// Six significant digits: enough for a screen, a third of the bytes of a double's 17.
 double display(double x) { return std::stod(fmt::format("{:.6g}", x)); }
 
+std::string base64(std::string_view bytes) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve(4 * ((bytes.size() + 2) / 3));
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kDigits[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+/// Whether the page carries a mesh part's file (its own triangles, parsed by three.js's loader
+/// for STL, OBJ or PLY), else why not (its format "stl", "obj" or "ply" in `format`).
+bool mesh_carried(const DrawnPart& part, std::string& format, std::string& why) {
+  std::string extension = fs::path(part.mesh_file).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  std::error_code ec;
+  const auto bytes = fs::file_size(part.mesh_file, ec);
+  if (extension != ".stl" && extension != ".obj" && extension != ".ply") {
+    why = fmt::format("a {} file, which the page cannot read", extension.empty() ? "mesh" : extension);
+    return false;
+  }
+  if (!ec && bytes > kMaxDrawnMeshBytes) {
+    why = fmt::format("{:.0f} MB, more than the page carries", double(bytes) / 1e6);
+    return false;
+  }
+  format = extension.substr(1);
+  return true;
+}
+
+/// The parts as the page draws them (report/web/src/main.js buildBody()): a solid's shape and
+/// sizes (m); a mesh's file bytes (base64) with its format (by the file's extension) and scale,
+/// or for a file too large to carry (or of a format the page's loaders do not read) its bounding
+/// box from the triangles heavytop read.
+nlohmann::json parts_json(const std::vector<DrawnPart>& parts) {
+  using nlohmann::json;
+  json out = json::array();
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const DrawnPart& part = parts[i];
+    if (part.solid) {
+      const SolidPart& s = *part.solid;
+      json p = {{"shape", name(s.shape)}, {"label", part.label}, {"radius", s.radius}, {"z0", s.z0}};
+      if (s.shape != PartShape::Sphere) p["height"] = s.height;
+      if (s.shape == PartShape::Tube) p["inner_radius"] = s.inner_radius;
+      if (s.shape == PartShape::Cone) p["apex"] = s.apex_up ? "up" : "down";
+      out.push_back(p);
+      continue;
+    }
+    const std::string key = fmt::format("body.part[{}] ({})", i, part.label);
+    json p = {{"shape", "mesh"}, {"label", part.label}, {"scale", part.scale}};
+    std::string format, why;
+    if (mesh_carried(part, format, why)) {
+      p["format"] = format;
+      p["data"] = base64(io::read_text_file(part.mesh_file, key, kMaxDrawnMeshBytes, "a mesh file"));
+    } else {
+      const TriangleMesh mesh = io::read_mesh(part.mesh_file, part.scale, key);
+      Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
+      for (const auto& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+      p["format"] = "box";
+      p["box"] = {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}};
+      p["why"] = why;
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
 /// The report's numbers for its page script (report/web/src/main.js), as a classic script that
 /// assigns window.HEAVYTOP_REPORT (pages opened from file:// may not fetch() a JSON file).
 std::string page_data_js(const Body& body, const InitialState& state, const Comparison& c,
                          const std::vector<SweepAxis>& map_axes, const std::vector<SweepVerdict>& map,
-                         const DiagramGrid& diagram) {
+                         const DiagramGrid& diagram, const std::vector<DrawnPart>& parts) {
   using nlohmann::json;
   const std::size_t n = c.nonlinear.size();
   const std::vector<std::size_t> shown = display_samples(n);
@@ -172,7 +243,7 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
     certificates += char('0' + int(v.lyapunov_certificate));
   }
   json certificate_names = json::array();
-  for (int k = 0; k <= int(LyapunovCertificate::None); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
+  for (int k = 0; k <= int(kLastLyapunovCertificate); ++k) certificate_names.push_back(name(LyapunovCertificate(k)));
   json points = json::array();
   for (std::size_t i = 0; i < diagram.verdicts.size(); ++i) {
     const auto p = grid_values(diagram.axes, i);
@@ -189,6 +260,7 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
       {"angle_scale", unit.scale},
       {"angle_unit", unit.name},
       {"shape", {{"semi_axes", shape.semi_axes}, {"centre", shape.centre}, {"note", shape.note}}},
+      {"parts", parts_json(parts)},
       {"playback", {{"speed", speed}, {"speeds", speeds}, {"spin_rate", spin_rate}}},
       {"map", {{"x", axis(map_axes[0])}, {"y", axis(map_axes[1])}, {"verdicts", verdicts}, {"certificates", certificates}}},
       {"certificates", certificate_names},
@@ -206,31 +278,56 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
 
 /// The 3D view (drawn by heavytop-report.js), first on the page: what a lecture projects. In a
 /// build without the page script, a note instead; the static figures follow in both cases.
-std::string view_html(const Comparison& c, const EquivalentEllipsoid& shape) {
+std::string view_html(const Comparison& c, const EquivalentEllipsoid& shape, const std::vector<DrawnPart>& parts) {
   if (const char* why = detail::web_assets_missing())
     return fmt::format("<p class='note' id='no-interactive'>No interactive view in this report: {}. The static "
                        "figures below show the same motion.</p>\n", html_escape(why));
+  std::string drawn;
+  if (parts.empty()) {
+    drawn = "The body is drawn as the uniform ellipsoid with its mass and moments (centre of mass at R on the spin axis)" +
+            (shape.note.empty() ? std::string() : fmt::format(" (not to scale: {})", html_escape(shape.note))) + ".";
+  } else {
+    std::string names;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      std::string what;
+      if (const auto& solid = parts[i].solid) {
+        what = fmt::format("a {}", name(solid->shape));
+        if (solid->shape == PartShape::Cone) what += solid->apex_up ? " (point up)" : " (point down)";
+      } else {
+        std::string format, why;
+        what = mesh_carried(parts[i], format, why)
+                   ? fmt::format("the mesh <code>{}</code> (its own triangles)", html_escape(parts[i].label))
+                   : fmt::format("the mesh <code>{}</code> (drawn as its bounding box: {})", html_escape(parts[i].label),
+                                 html_escape(why));
+      }
+      names += fmt::format("{}{}", i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ", what);
+    }
+    drawn = fmt::format("The body is drawn as it is made, to scale and where the configuration puts {}: {}.",
+                        parts.size() == 1 ? "it" : "each part", names);
+  }
   std::string boxes;
   for (const auto& m : c.models)
     boxes += fmt::format("<label><input type='checkbox' id='overlay-{0}'> {0}{1}</label> ", m.model,
                          m.diverged_at ? fmt::format(" (diverges at {:.3g} s)", *m.diverged_at) : "");
   return fmt::format(R"(<section id='interactive'>
 <h2>Watch it move</h2>
-<p>The full nonlinear motion. The body is drawn as the uniform ellipsoid with its mass and moments (centre of mass at R on
-the spin axis){0}. The red sector and ball on its rim turn with the body at its true spin angle; black: the fixed point O,
-the vertical (dashed) and the path of the axis's tip. Drag to turn the view, scroll to zoom. Inset (bottom right):
-straight down on the tip, xi to the right, eta up, <span id='inset-scale'></span> from centre to edge.</p>
+<p>The full nonlinear motion. {0} The red sector and ball on its rim turn with the body at its true spin angle; black: the
+fixed point O, the vertical (dashed) and the path of the axis's tip; the floor (grid) is below the body's lowest point. Drag
+to turn the view, scroll to zoom. Inset (bottom right): straight down on the tip, xi to the right, eta up,
+<span id='inset-scale'></span> from centre to edge.</p>
 <div id='scene'></div>
 <div class='controls'><button id='play'>Pause</button>
 <label>speed <input type='range' id='speed' min='0' max='1' step='1'> <span id='speed-value'></span></label>
 <label>time <input type='range' id='scrub' min='0' max='10000' value='0' step='1'></label> <span id='time'></span></div>
+<p class='controls'><label class='exaggerate'><input type='checkbox' id='exaggerate'> <b>exaggerate tilt x10</b>
+(not to scale: the axis drawn 10 times as far from the vertical, at most upside down, so a small wobble shows)</label></p>
 <p class='controls'>Overlay each approximate model's axis (its tip's path in its colour) beside the nonlinear one: {1}</p>
 <p class='note' id='spin-note' hidden></p>
 <p><small>Display data: {2} of the {3} computed samples (six digits); <a href='trajectories.csv'>trajectories.csv</a>
 has them all.</small></p>
 </section>
 )",
-                     shape.note.empty() ? "" : fmt::format(" (not to scale: {})", html_escape(shape.note)), boxes,
+                     drawn, boxes,
                      display_samples(c.nonlinear.size()).size(), c.nonlinear.size());
 }
 
@@ -262,6 +359,7 @@ figure { margin: 1.5em 0; } figure img { width: 100%; border: 1px solid #ddd; } 
 .note { background: #fff8e1; border-left: 4px solid #f9a825; padding: .5em 1em; }
 #scene { width: 100%; } #scene canvas { display: block; border: 1px solid #ddd; }
 .controls { display: flex; flex-wrap: wrap; gap: .6em 1.4em; align-items: center; margin: .6em 0; }
+label.exaggerate { background: #fff3e0; border: 1px solid #f0b070; padding: .2em .6em; border-radius: 4px; }
 .controls button { font-size: 1em; padding: .25em 1.2em; } #scrub { width: 22em; }
 .plot { margin: 1em 0; } #explorer { width: 100%; max-width: 1000px; border: 1px solid #ddd; cursor: crosshair; }
 b.ok { color: #1a7f1a; } b.bad { color: #c62828; }
@@ -334,7 +432,7 @@ std::string body_words(const Body& body) {
 }  // namespace
 
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
-                  const std::optional<ReportMap>& map, const std::string& source) {
+                  const std::optional<ReportMap>& map, const std::string& source, const std::vector<DrawnPart>& parts) {
   // A map's heat maps first: bad slices are refused before the folder is made.
   const auto heat_maps = map ? map->heat_maps() : std::vector<std::pair<std::string, StabilityMap>>{};
   std::error_code ec;
@@ -387,7 +485,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   };
   if (life) data.emplace_back("lifetime.json", io::lifetime_json(*life));
   const auto assets = detail::web_assets();
-  if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram));
+  if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram, parts));
 
   std::ostringstream html;
   const std::string title = fmt::format("{}: {}", source.empty() ? "The built-in example, a wooden toy top" : source,
@@ -424,7 +522,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
                         "lifetime --format json</code>)</figcaption></figure>\n",
                         life_figure->name, html_escape(life_figure->caption));
   html << "</section>\n";
-  html << view_html(c, equivalent_ellipsoid(body));
+  html << view_html(c, equivalent_ellipsoid(body), parts);
   html << "<h2>The models: is it stable?</h2>\n<p><i>first-order</i> is the paper's model (4) and its condition (9); "
           "<i>body-fixed</i> its model (5), which the paper itself calls erroneous; <i>linearized</i> the exact "
           "linearisation about the upright spin, the one to trust. A model's <i>critical spin</i> is the slowest spin "
@@ -443,10 +541,16 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       io::intervals_text(lyapunov.intervals),
       lyapunov.superfast ? fmt::format("from {:.6g} rad/s", *lyapunov.superfast) : std::string("at no spin"),
       v.certificate == LyapunovCertificate::CriticalQuartic
-          ? " At the boundary of (9) the linear models grow (a Jordan block: a double frequency whose motion grows "
-            "like t), but the real symmetric top does not: started &delta; off vertical its tilt stays below about "
-            "&radic;(2&delta;) (erratum E2)."
-          : "",
+          ? std::string(" At the boundary of (9) the linear models grow (a Jordan block: a double frequency whose motion "
+                        "grows like t), but the real symmetric top does not: started &delta; off vertical its tilt stays "
+                        "below about &radic;(2&delta;) (erratum E2).")
+      : v.normal_form
+          ? fmt::format(" Birkhoff normal form (order 4): w1 = {:.6g}, w2 = {:.6g} rad/s, c20 = {:.6g}, c11 = {:.6g}, "
+                        "c02 = {:.6g}, D = {:.6g}{}; a KAM verdict holds for perturbations small enough (no size given).",
+                        v.normal_form->w1, v.normal_form->w2, v.normal_form->c20, v.normal_form->c11, v.normal_form->c02,
+                        v.normal_form->D,
+                        v.normal_form->a13 ? fmt::format(", at 1:3 with a13 = {:.6g}", *v.normal_form->a13) : std::string())
+          : std::string(),
       wander.max_tilt ? fmt::format(" From the given start the axis tilts at most {:.4g} rad ({:.3g} degrees; {}).",
                                     *wander.max_tilt, *wander.max_tilt * 180.0 / std::numbers::pi,
                                     wander.closed_form ? "closed form"

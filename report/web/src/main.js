@@ -6,11 +6,16 @@
 // draws them: the attitude is composed from the report's theta, phi, psi as SPEC section 2
 // defines it, R = R_eta(theta) R_xi(phi) Rz(psi).
 import {
-  AmbientLight, BufferAttribute, BufferGeometry, Color, CylinderGeometry, DirectionalLight, Float32BufferAttribute,
-  GridHelper, Group, Line, LineBasicMaterial, LineDashedMaterial, Matrix4, Mesh, MeshBasicMaterial, MeshStandardMaterial,
-  OrthographicCamera, PerspectiveCamera, Scene, SphereGeometry, TorusGeometry, ConeGeometry, Vector3, WebGLRenderer,
+  AmbientLight, Box3, BoxGeometry, BufferAttribute, BufferGeometry, Color, ConeGeometry, CylinderGeometry, DirectionalLight,
+  DoubleSide, Float32BufferAttribute, GridHelper, Group, Line, LineBasicMaterial, LineDashedMaterial, Matrix4, Mesh,
+  MeshBasicMaterial, MeshStandardMaterial, OrthographicCamera, PerspectiveCamera, RingGeometry, Scene, SphereGeometry,
+  TorusGeometry, Vector3, WebGLRenderer,
 } from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { STLLoader } from "three/examples/jsm/loaders/STLLoader.js";
+import { OBJLoader } from "three/examples/jsm/loaders/OBJLoader.js";
+import { PLYLoader } from "three/examples/jsm/loaders/PLYLoader.js";
+import { mergeGeometries } from "three/examples/jsm/utils/BufferGeometryUtils.js";
 import uPlot from "uplot";
 import uPlotCss from "uplot/dist/uPlot.min.css";
 
@@ -45,17 +50,224 @@ function lerp(series, u) {
   return series[i] + f * (series[i + 1] - series[i]);
 }
 
-// ---- the 3D view ---------------------------------------------------------------------------------
-function buildView() {
-  const host = $("scene");
-  const t = D.t, n = t.length, T = t[n - 1];
-  const shape = D.shape;  // the equivalent ellipsoid: semi-axes (m) and its centre on z
-  const a = shape.semi_axes[0], b = shape.semi_axes[1], c = shape.semi_axes[2], zc = shape.centre;
+// ---- the body as drawn ------------------------------------------------------------------------
+// Each triangle painted by its azimuth about the spin axis: 12 sectors in a part's two tones,
+// sector 0 red towards the rim, so that the spin shows on a body of revolution.
+const TONES = [[[0.80, 0.62, 0.38], [0.62, 0.44, 0.24]],   // wood
+               [[0.72, 0.75, 0.79], [0.55, 0.58, 0.63]],   // steel
+               [[0.35, 0.55, 0.72], [0.25, 0.42, 0.58]],   // blue
+               [[0.85, 0.72, 0.35], [0.70, 0.56, 0.22]]];  // ochre
+const RED = [0.85, 0.1, 0.1];
+function paintSectors(geometry, tones, rimRadius) {
+  const g = geometry.index ? geometry.toNonIndexed() : geometry;
+  const p = g.attributes.position, colours = new Float32Array(3 * p.count);
+  for (let i = 0; i + 2 < p.count; i += 3) {
+    const x = (p.getX(i) + p.getX(i + 1) + p.getX(i + 2)) / 3, y = (p.getY(i) + p.getY(i + 1) + p.getY(i + 2)) / 3;
+    const sector = Math.floor(((Math.atan2(y, x) + Math.PI) / (2 * Math.PI)) * 12) % 12;
+    const c = sector === 6 && Math.hypot(x, y) > 0.6 * rimRadius ? RED : tones[sector % 2];  // sector 6: azimuth 0, +x
+    for (let k = 0; k < 3; k++) colours.set(c, 3 * (i + k));
+  }
+  g.setAttribute("color", new Float32BufferAttribute(colours, 3));
+  return g;
+}
+
+// The triangles of a non-indexed geometry wound the other way (every attribute's second and
+// third vertex swapped).
+function flipTriangles(g) {
+  for (const a of Object.values(g.attributes))
+    for (let i = 0; i + 2 < a.count; i += 3)
+      for (let k = 0; k < a.itemSize; k++) {
+        const x = a.getComponent(i + 1, k);
+        a.setComponent(i + 1, k, a.getComponent(i + 2, k));
+        a.setComponent(i + 2, k, x);
+      }
+  return g;
+}
+
+// A mesh part from its own file's bytes (base64), parsed by three.js's loader for its format.
+function meshGeometry(part) {
+  const bytes = Uint8Array.from(atob(part.data), (ch) => ch.charCodeAt(0));
+  let g;
+  if (part.format === "stl") g = new STLLoader().parse(bytes.buffer);
+  else if (part.format === "ply") g = new PLYLoader().parse(bytes.buffer);
+  else if (part.format === "obj") {
+    const pieces = [];
+    new OBJLoader().parse(new TextDecoder().decode(bytes)).traverse((o) => {
+      if (!o.isMesh) return;
+      const piece = new BufferGeometry();
+      piece.setAttribute("position", (o.geometry.index ? o.geometry.toNonIndexed() : o.geometry).attributes.position);
+      pieces.push(piece);
+    });
+    g = mergeGeometries(pieces);
+  } else throw new Error(`a mesh of format ${part.format}`);
+  g = g.index ? g.toNonIndexed() : g;
+  for (const name of Object.keys(g.attributes)) if (name !== "position") g.deleteAttribute(name);
+  g.scale(part.scale, part.scale, part.scale);
+  // Outward normals from the winding (SPEC 10 accepts a surface oriented inwards throughout).
+  const p = g.attributes.position, a = new Vector3(), b = new Vector3(), c = new Vector3();
+  let volume = 0;
+  for (let i = 0; i + 2 < p.count; i += 3) {
+    a.fromBufferAttribute(p, i); b.fromBufferAttribute(p, i + 1); c.fromBufferAttribute(p, i + 2);
+    volume += a.dot(b.cross(c));
+  }
+  if (volume < 0) flipTriangles(g);
+  g.computeVertexNormals();
+  return g;
+}
+
+// A solid part of SPEC section 10 (body axes, z the spin axis, z0 its lowest point).
+function solidGeometry(part) {
+  const r = part.radius, h = part.height, z0 = part.z0, N = 96;
+  switch (part.shape) {
+    case "cylinder": return new CylinderGeometry(r, r, h, N).rotateX(Math.PI / 2).translate(0, 0, z0 + h / 2);
+    case "cone":  // three.js's cone has its apex on +y
+      return new ConeGeometry(r, h, N).rotateX(part.apex === "up" ? Math.PI / 2 : -Math.PI / 2).translate(0, 0, z0 + h / 2);
+    case "sphere": return new SphereGeometry(r, N, N / 2).rotateX(Math.PI / 2).translate(0, 0, z0 + r);
+    case "tube": {
+      const ri = part.inner_radius;
+      if (!(ri > 0)) return new CylinderGeometry(r, r, h, N).rotateX(Math.PI / 2).translate(0, 0, z0 + h / 2);
+      const inner = flipTriangles(new CylinderGeometry(ri, ri, h, N, 1, true).toNonIndexed());  // it faces the hole
+      const q = inner.attributes.normal;
+      for (let i = 0; i < q.count; i++) q.setXYZ(i, -q.getX(i), -q.getY(i), -q.getZ(i));
+      const ring = (y, up) => new RingGeometry(ri, r, N, 1).rotateX(up ? -Math.PI / 2 : Math.PI / 2).translate(0, y, 0).toNonIndexed();
+      const outer = new CylinderGeometry(r, r, h, N, 1, true).toNonIndexed();
+      const all = [outer, inner, ring(h / 2, true), ring(-h / 2, false)];
+      for (const g of all) g.deleteAttribute("uv");
+      return mergeGeometries(all).rotateX(Math.PI / 2).translate(0, 0, z0 + h / 2);
+    }
+  }
+  throw new Error(`a part of shape ${part.shape}`);
+}
+
+// The body in its own axes: its parts as they are (SPEC section 10), or for a body given by its
+// moments only the uniform ellipsoid with its mass and central moments, on a spindle. Returns
+// the group, what it is made of (shapes, for a reader's console and the browser test), its size
+// and the point on the axis whose path is traced.
+function buildBody(D) {
+  const group = new Group();
+  const shapes = [];
+  const material = (options) => new MeshStandardMaterial({ vertexColors: true, roughness: 0.65, ...options });
+  if (D.parts && D.parts.length) {
+    const geometries = D.parts.map((part) => (part.shape === "mesh" ? part.format === "box" ? null : meshGeometry(part) : solidGeometry(part)));
+    let rim = 0, zMin = Infinity, zMax = -Infinity, reach = 0;
+    for (const g of geometries) {
+      if (!g) continue;
+      const p = g.attributes.position;
+      for (let i = 0; i < p.count; i++) {
+        rim = Math.max(rim, Math.hypot(p.getX(i), p.getY(i)));
+        zMin = Math.min(zMin, p.getZ(i)); zMax = Math.max(zMax, p.getZ(i));
+        reach = Math.max(reach, Math.hypot(p.getX(i), p.getY(i), p.getZ(i)));
+      }
+    }
+    D.parts.forEach((part, k) => {
+      let mesh;
+      if (part.format === "box") {  // a mesh too large to carry: its bounding box, translucent
+        const [lo, hi] = [part.box.min, part.box.max];
+        const g = new BoxGeometry(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]).translate((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
+        mesh = new Mesh(g, new MeshStandardMaterial({ color: 0x9c7a50, transparent: true, opacity: 0.5 }));
+        rim = Math.max(rim, Math.hypot(lo[0], lo[1]), Math.hypot(hi[0], hi[1]));
+        zMin = Math.min(zMin, lo[2]); zMax = Math.max(zMax, hi[2]);
+      } else {
+        mesh = new Mesh(paintSectors(geometries[k], TONES[k % TONES.length], rim),
+                        material(part.shape === "mesh" ? { side: DoubleSide } : {}));
+      }
+      mesh.userData.part = k;
+      group.add(mesh);
+      const box = new Box3().setFromBufferAttribute(mesh.geometry.attributes.position);
+      shapes.push({ ...part, data: undefined, triangles: mesh.geometry.attributes.position.count / 3,
+                    min: box.min.toArray(), max: box.max.toArray(), uuid: mesh.uuid });
+    });
+    const size = Math.max(reach, 1e-9);
+    // The traced point: the axis at the body's top (a top) or its bottom (a hanging body).
+    const zTrace = zMax > 0.2 * size || zMax >= -zMin ? zMax : zMin;
+    // The red ball on the rim, at the widest height.
+    let zRim = 0.5 * (zMin + zMax), best = -1;
+    for (const g of geometries) {
+      if (!g) continue;
+      const p = g.attributes.position;
+      for (let i = 0; i < p.count; i++) {
+        const rr = Math.hypot(p.getX(i), p.getY(i));
+        if (rr > best + 1e-9 * size) { best = rr; zRim = p.getZ(i); }
+      }
+    }
+    const marker = new Mesh(new SphereGeometry(size / 30, 16, 8), new MeshStandardMaterial({ color: 0xd62728 }));
+    marker.position.set(rim + size / 45, 0, zRim);
+    group.add(marker);
+    return { group, shapes, size, zTrace, spindle: false };
+  }
+  // The equivalent ellipsoid (D.shape: semi-axes, m, and its centre on z).
+  const a = D.shape.semi_axes[0], b = D.shape.semi_axes[1], c = D.shape.semi_axes[2], zc = D.shape.centre;
   const size = Math.max(a, b, c, Math.abs(zc));
   // The spindle: from the tip at O (a top) through the body to a point above it, whose path is
   // traced; a hanging body's from below it up through O to a short stub above.
   const zTop = zc >= 0 ? zc + Math.max(1.5 * c, 0.45 * size) : 0.45 * size;
   const zBottom = zc >= 0 ? 0 : zc - Math.max(1.5 * c, 0.2 * size);
+  const ell = paintSectors(new SphereGeometry(1, 96, 48).rotateX(Math.PI / 2).scale(a, b, c).translate(0, 0, zc), TONES[0], Math.max(a, b));
+  group.add(new Mesh(ell, material({ roughness: 0.7 })));
+  const rim = new Mesh(new TorusGeometry(1, 0.035, 12, 128).scale(a, b, a).translate(0, 0, zc), new MeshStandardMaterial({ color: 0x333333 }));
+  group.add(rim);
+  const marker = new Mesh(new SphereGeometry(size / 18, 16, 8), new MeshStandardMaterial({ color: 0xd62728 }));
+  marker.position.set(a * 1.02, 0, zc);
+  group.add(marker);
+  // A top's spindle starts inside its point (a flat end at O would dip below it when tilted).
+  const hPoint = Math.min(0.35 * zc, size / 3), zLow = zc > 0 ? 0.9 * hPoint : zBottom;
+  const spindle = new Mesh(new CylinderGeometry(size / 40, size / 40, zTop - zLow, 16).rotateX(Math.PI / 2).translate(0, 0, 0.5 * (zTop + zLow)),
+                           new MeshStandardMaterial({ color: 0x9aa3ab, metalness: 0.5, roughness: 0.35 }));
+  group.add(spindle);
+  if (zc > 0) {  // the top's own point, on O
+    const h = hPoint;
+    group.add(new Mesh(new ConeGeometry(h / 2.2, h, 32).rotateX(-Math.PI / 2).translate(0, 0, h / 2),
+                       new MeshStandardMaterial({ color: 0x6b737a, metalness: 0.5, roughness: 0.4 })));
+  }
+  shapes.push({ shape: "ellipsoid", semi_axes: [a, b, c], centre: zc, uuid: group.children[0].uuid });
+  return { group, shapes, size, zTrace: zTop, spindle: true };
+}
+
+// Points of the body (its own axes), at most `most` of them, for its extent over the motion.
+function bodyPoints(group, most) {
+  const all = [];
+  group.updateMatrixWorld(true);
+  group.traverse((o) => {
+    if (!o.isMesh) return;
+    const p = o.geometry.attributes.position, v = new Vector3();
+    for (let i = 0; i < p.count; i++) all.push(v.fromBufferAttribute(p, i).applyMatrix4(o.matrix).toArray());
+  });
+  const stride = Math.max(1, Math.ceil(all.length / most)), out = [];
+  // Every stride-th, and the extremes along each axis (the lowest point above all).
+  for (let i = 0; i < all.length; i += stride) out.push(all[i]);
+  for (let k = 0; k < 3; k++) {
+    let lo = 0, hi = 0;
+    all.forEach((q, i) => { if (q[k] < all[lo][k]) lo = i; if (q[k] > all[hi][k]) hi = i; });
+    out.push(all[lo], all[hi]);
+  }
+  return out;
+}
+
+// ---- the 3D view ---------------------------------------------------------------------------------
+const EXAGGERATION = 10;
+// The attitude drawn: the true one, or (exaggerated) its tilt from the vertical times 10, at most
+// pi (upside down), about the same horizontal line, azimuth and spin unchanged.
+const ex = new Matrix4(), exAxis = new Vector3();
+function exaggerate(R) {
+  const e = R.elements, kx = e[8], ky = e[9], kz = e[10];
+  const tilt = Math.acos(Math.max(-1, Math.min(1, kz))), h = Math.hypot(kx, ky);
+  if (!(h > 1e-12)) return R;
+  const drawn = Math.min(EXAGGERATION * tilt, Math.PI);
+  exAxis.set(-ky / h, kx / h, 0);
+  return R.premultiply(ex.makeRotationAxis(exAxis, drawn - tilt));
+}
+function exaggerateAxis(k) {
+  const tilt = Math.acos(Math.max(-1, Math.min(1, k.z))), h = Math.hypot(k.x, k.y);
+  if (!(h > 1e-12)) return k;
+  const drawn = Math.min(EXAGGERATION * tilt, Math.PI), s = Math.sin(drawn) / h;
+  return k.set(k.x * s, k.y * s, Math.cos(drawn));
+}
+
+function buildView() {
+  const host = $("scene");
+  const t = D.t, n = t.length, T = t[n - 1];
+  const body = buildBody(D);
+  const { size, zTrace } = body;
 
   const renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
@@ -69,87 +281,121 @@ function buildView() {
   const sun = new DirectionalLight(0xffffff, 1.6);
   sun.position.set(2 * size, -3 * size, 5 * size);
   scene.add(sun);
+  const fill = new DirectionalLight(0xffffff, 0.5);
+  fill.position.set(-3 * size, 2 * size, -1 * size);
+  scene.add(fill);
 
-  // The fixed frame: the floor through O (a top on its tip) or a ceiling mount (hanging), the vertical.
-  const grid = new GridHelper(6 * size, 12, 0xb0b8c0, 0xd5dade);
-  grid.rotation.x = Math.PI / 2;
-  scene.add(grid);
-  const vertical = new Line(new BufferGeometry().setFromPoints([new Vector3(0, 0, -1.3 * size), new Vector3(0, 0, zTop * 1.6)]),
-                            new LineDashedMaterial({ color: 0x555555, dashSize: size / 15, gapSize: size / 20 }));
-  vertical.computeLineDistances();
-  vertical.layers.enable(1);
-  scene.add(vertical);
-  const pivot = new Mesh(new SphereGeometry(size / 25, 24, 12), new MeshStandardMaterial({ color: 0x222222 }));
-  scene.add(pivot);
-  // A hanging body hangs from a mount above O; a top stands on the floor (the grid) at O.
-  const cone = (h) => { const g = new ConeGeometry(h / 2.2, h, 32); g.rotateX(-Math.PI / 2); g.translate(0, 0, h / 2); return g; };
-  if (zc < 0) scene.add(new Mesh(cone(size / 4), new MeshStandardMaterial({ color: 0x8a939b })));
-
-  // The body (body axes: z the spin axis): the ellipsoid with the body's mass and central
-  // moments, its equator painted in sectors with one red marker so the spin shows, a spindle.
-  const bodyGroup = new Group();
+  const bodyGroup = body.group;
   bodyGroup.matrixAutoUpdate = false;
   scene.add(bodyGroup);
-  const ell = new SphereGeometry(1, 96, 48);
-  ell.rotateX(Math.PI / 2);  // poles on z
-  const pos = ell.attributes.position, colors = [];
-  for (let i = 0; i < pos.count; i++) {
-    const az = Math.atan2(pos.getY(i), pos.getX(i));
-    const sector = Math.floor(((az + Math.PI) / (2 * Math.PI)) * 12) % 12;
-    const band = Math.abs(pos.getZ(i)) < 0.35;
-    const col = sector === 0 && band ? [0.85, 0.1, 0.1] : sector % 2 ? [0.80, 0.62, 0.38] : [0.62, 0.44, 0.24];
-    colors.push(...col);
-  }
-  ell.setAttribute("color", new Float32BufferAttribute(colors, 3));
-  const ellMesh = new Mesh(ell, new MeshStandardMaterial({ vertexColors: true, roughness: 0.7 }));
-  ellMesh.scale.set(a, b, c);
-  ellMesh.position.z = zc;
-  bodyGroup.add(ellMesh);
-  const rim = new Mesh(new TorusGeometry(1, 0.035, 12, 128), new MeshStandardMaterial({ color: 0x333333 }));
-  rim.scale.set(a, b, a);  // a round tube of 0.035 a
-  rim.position.z = zc;
-  bodyGroup.add(rim);
-  const marker = new Mesh(new SphereGeometry(size / 18, 16, 8), new MeshStandardMaterial({ color: 0xd62728 }));
-  marker.position.set(a * 1.02, 0, zc);
-  bodyGroup.add(marker);
-  const spindle = new Mesh(new CylinderGeometry(size / 40, size / 40, zTop - zBottom, 16),
-                           new MeshStandardMaterial({ color: 0x9aa3ab, metalness: 0.5, roughness: 0.35 }));
-  spindle.rotation.x = Math.PI / 2;
-  spindle.position.z = 0.5 * (zTop + zBottom);
-  bodyGroup.add(spindle);
-  if (zc > 0) {  // the top's own point, on O
-    const h = Math.min(0.35 * zc, size / 3);
-    bodyGroup.add(new Mesh(cone(h), new MeshStandardMaterial({ color: 0x6b737a, metalness: 0.5, roughness: 0.4 })));
-  }
 
-  // The traced point: the axis at zTop. Its past path, for the truth and each model.
-  const tip = (theta, phi, out) => axisOf(theta, phi, out).multiplyScalar(zTop);
+  // The body's extent over the motion, true and exaggerated: the floor goes below its lowest
+  // point (at O for a top that stays above its tip), the camera frames all of it.
+  const points = bodyPoints(bodyGroup, 4000);
+  const R = new Matrix4(), v = new Vector3();
+  const extentOf = (exaggerated) => {
+    const lo = new Vector3(0, 0, 0), hi = new Vector3(0, 0, 0);
+    for (let i = 0; i < n; i++) {
+      attitude(D.nonlinear.theta[i], D.nonlinear.phi[i], D.nonlinear.psi[i], R);
+      if (exaggerated) exaggerate(R);
+      const e = R.elements;
+      for (const q of points) {
+        v.set(e[0] * q[0] + e[4] * q[1] + e[8] * q[2], e[1] * q[0] + e[5] * q[1] + e[9] * q[2], e[2] * q[0] + e[6] * q[1] + e[10] * q[2]);
+        lo.min(v); hi.max(v);
+      }
+      axisOf(D.nonlinear.theta[i], D.nonlinear.phi[i], v);
+      if (exaggerated) exaggerateAxis(v);
+      v.multiplyScalar(zTrace);
+      lo.min(v); hi.max(v);
+    }
+    return { lo, hi };
+  };
+  // A body never near the vertical (the horizontal gyroscope) would only be drawn upside down:
+  // no exaggeration for it.
+  let leastTilt = Math.PI;
+  for (let i = 0; i < n; i++) leastTilt = Math.min(leastTilt, Math.acos(Math.max(-1, Math.min(1, axisOf(D.nonlinear.theta[i], D.nonlinear.phi[i], v).z))));
+  const exaggerable = EXAGGERATION * leastTilt < 0.9 * Math.PI;
+  const truth = extentOf(false), extents = [truth, exaggerable ? extentOf(true) : truth];
+  const floorOf = (ext) => (ext.lo.z >= -1e-3 * size ? 0 : ext.lo.z - 0.04 * size);
+  const floors = extents.map(floorOf);
+
+  // The fixed frame: the floor (a grid) below the body, a stand from it up to O when O is above
+  // it, a mount above O for a hanging body, the vertical.
+  const reachXY = Math.max(...extents.map((e) => Math.max(-e.lo.x, e.hi.x, -e.lo.y, e.hi.y)), 0.5 * size);
+  const gridSide = 2.6 * reachXY;
+  const grid = new GridHelper(gridSide, 12, 0xb0b8c0, 0xd5dade);
+  grid.rotation.x = Math.PI / 2;
+  scene.add(grid);
+  const standMaterial = new MeshStandardMaterial({ color: 0x8a939b, metalness: 0.3, roughness: 0.5 });
+  const stand = new Mesh(new CylinderGeometry(size / 70, size / 70, 1, 16).rotateX(Math.PI / 2).translate(0, 0, -0.5), standMaterial);
+  const foot = new Mesh(new CylinderGeometry(size / 9, size / 8, size / 40, 48).rotateX(Math.PI / 2).translate(0, 0, size / 80), standMaterial);
+  scene.add(stand, foot);
+  const zHigh = Math.max(...extents.map((e) => e.hi.z), 0.3 * size);
+  const vertical = new Line(new BufferGeometry().setFromPoints([new Vector3(0, 0, 0), new Vector3(0, 0, 1)]),
+                            new LineDashedMaterial({ color: 0x555555, dashSize: size / 15, gapSize: size / 20 }));
+  vertical.layers.enable(1);
+  scene.add(vertical);
+  const pivot = new Mesh(new SphereGeometry(size / 40, 24, 12), new MeshStandardMaterial({ color: 0x222222 }));
+  scene.add(pivot);
+  if (D.body.length < 0) {  // a hanging body hangs from a mount above O
+    const h = size / 4;
+    scene.add(new Mesh(new ConeGeometry(h / 2.2, h, 32).rotateX(-Math.PI / 2).translate(0, 0, h / 2), standMaterial));
+  }
+  const state = { time: 0, playing: true, speed: D.playback.speed, frames: 0, exaggerated: false, shapes: body.shapes };
+  function placeFloor() {
+    const z = floors[state.exaggerated ? 1 : 0];
+    state.floor = z;
+    state.lowest = extents[state.exaggerated ? 1 : 0].lo.z;
+    grid.position.z = z;
+    // A top whose body reaches below O stands on a post; a hanging body's mount needs none.
+    stand.visible = foot.visible = z < 0 && D.body.length >= 0;
+    stand.scale.set(1, 1, -z || 1);
+    foot.position.z = z;
+    vertical.geometry.setFromPoints([new Vector3(0, 0, z), new Vector3(0, 0, 1.25 * zHigh)]);
+    vertical.computeLineDistances();
+  }
+  placeFloor();
+
+  // The traced point: the axis at zTrace. Its past path, for the truth and each model, true and
+  // exaggerated.
+  const tip = (theta, phi, out) => {
+    axisOf(theta, phi, out);
+    if (state.exaggerated) exaggerateAxis(out);
+    return out.multiplyScalar(zTrace);
+  };
+  const traces = [];
   function traceOf(theta, phi, color, until) {
-    const pts = new Float32Array(3 * n), v = new Vector3();
+    const pts = [new Float32Array(3 * n), new Float32Array(3 * n)], w = new Vector3();
     let m = 0;
     // Up to a divergence, or a gap (null: a model that stopped on a numerical failure).
     for (let i = 0; i < n && !(until !== null && t[i] > until) && theta[i] !== null && phi[i] !== null; i++, m++) {
-      tip(theta[i], phi[i], v);
-      pts.set([v.x, v.y, v.z], 3 * i);
+      axisOf(theta[i], phi[i], w);
+      pts[0].set([w.x * zTrace, w.y * zTrace, w.z * zTrace], 3 * i);
+      exaggerateAxis(w).multiplyScalar(zTrace);
+      pts[1].set([w.x, w.y, w.z], 3 * i);
     }
     const g = new BufferGeometry();
-    g.setAttribute("position", new BufferAttribute(pts, 3));
+    const attributes = pts.map((p) => new BufferAttribute(p, 3));
+    g.setAttribute("position", attributes[0]);
     g.setDrawRange(0, 0);
     const line = new Line(g, new LineBasicMaterial({ color }));
+    line.frustumCulled = false;
     line.layers.enable(1);
     line.userData.count = m;
-    scene.add(line);
+    line.userData.attributes = attributes;
+    traces.push(line);
     return line;
   }
   const truthTrace = traceOf(D.nonlinear.theta, D.nonlinear.phi, 0x000000, null);
-  const tipMark = new Mesh(new SphereGeometry(size / 30, 16, 8), new MeshStandardMaterial({ color: 0x000000 }));
+  scene.add(truthTrace);
+  const tipMark = new Mesh(new SphereGeometry(size / 45, 16, 8), new MeshStandardMaterial({ color: 0x000000 }));
   scene.add(tipMark);
   const overlays = D.models.map((m) => {
     const color = new Color(COLORS[m.name] || "#777777");
-    const rod = new Line(new BufferGeometry().setFromPoints([new Vector3(), new Vector3(0, 0, zTop)]),
+    const rod = new Line(new BufferGeometry().setFromPoints([new Vector3(), new Vector3(0, 0, zTrace)]),
                          new LineBasicMaterial({ color }));
     rod.matrixAutoUpdate = false;
-    const end = new Mesh(new SphereGeometry(size / 34, 16, 8), new MeshStandardMaterial({ color }));
+    const end = new Mesh(new SphereGeometry(size / 50, 16, 8), new MeshStandardMaterial({ color }));
     const trace = traceOf(m.theta, m.phi, color, m.diverged_at);
     const g = new Group();
     g.add(rod, end, trace);
@@ -158,38 +404,74 @@ function buildView() {
     return { model: m, group: g, rod, end, trace, dot: null };
   });
 
-  // Cameras: an oblique view that a mouse can turn, and an inset from straight above on the tip
-  // (xi to the right, eta up: the static figure's "seen from above").
-  const camera = new PerspectiveCamera(35, 1, size / 100, size * 100);
+  // Cameras: an oblique view that a mouse can turn, framing the body over the whole motion (the
+  // box of both the true and the exaggerated attitudes, the floor's centre and O); and an inset
+  // from straight above on the tip (xi to the right, eta up: the static figure's "seen from above").
+  const box = new Box3(new Vector3(0, 0, Math.min(...floors)), new Vector3(0, 0, D.body.length < 0 ? size / 4 : 0));
+  for (const e of extents) box.expandByPoint(e.lo).expandByPoint(e.hi);
+  const centre = box.getCenter(new Vector3()), radius = Math.max(0.5 * box.getSize(new Vector3()).length(), 1e-9);
+  const camera = new PerspectiveCamera(35, 1, radius / 100, radius * 100);
   camera.up.set(0, 0, 1);
-  camera.position.set(2.3 * size, -3.0 * size, 1.6 * size + 0.6 * zTop);
+  const direction = new Vector3(2.3, -3.0, 1.3).normalize();
+  // The nearest camera along `direction` that sees every corner of the box, left of the inset
+  // (which covers the right quarter of the view's lower part).
+  const corners = [0, 1, 2, 3, 4, 5, 6, 7].map((c) => new Vector3(c & 1 ? box.max.x : box.min.x, c & 2 ? box.max.y : box.min.y, c & 4 ? box.max.z : box.min.z));
+  function fitCamera() {
+    const sees = (d) => {
+      camera.position.copy(centre).addScaledVector(direction, d);
+      camera.lookAt(centre);
+      camera.updateMatrixWorld();
+      return corners.every((c) => { const p = c.clone().project(camera); return Math.abs(p.z) < 1 && Math.abs(p.x) <= 0.5 && Math.abs(p.y) <= 0.86; });
+    };
+    let near = 0, far = 4 * radius;
+    while (!sees(far) && far < 1e6 * radius) far *= 2;
+    for (let k = 0; k < 40; k++) { const mid = 0.5 * (near + far); if (sees(mid)) far = mid; else near = mid; }
+    sees(far);
+  }
   const controls = new OrbitControls(camera, renderer.domElement);
-  controls.target.set(0, 0, 0.5 * (zTop + zBottom));
-  controls.update();
+  controls.target.copy(centre);
   const top = new OrthographicCamera(-1, 1, 1, -1, size / 100, size * 100);
   top.up.set(0, 1, 0);
   top.layers.set(1);
-  let extent = 0;  // the tip's largest distance from the vertical, for the inset's scale
-  {
-    const v = new Vector3();
-    for (let i = 0; i < n; i++) { tip(D.nonlinear.theta[i], D.nonlinear.phi[i], v); extent = Math.max(extent, Math.hypot(v.x, v.y)); }
-    extent = Math.max(1.25 * extent, 1e-6 * zTop);
-  }
-  top.position.set(0, 0, zTop * 3);
+  // The tip's largest distance from the vertical, for the inset's scale (true and exaggerated).
+  const insetExtent = [false, true].map((exaggerated) => {
+    let e = 0;
+    const w = new Vector3();
+    for (let i = 0; i < n; i++) {
+      axisOf(D.nonlinear.theta[i], D.nonlinear.phi[i], w);
+      if (exaggerated) exaggerateAxis(w);
+      w.multiplyScalar(zTrace);
+      e = Math.max(e, Math.hypot(w.x, w.y));
+    }
+    return Math.max(1.25 * e, 1e-6 * Math.abs(zTrace));
+  });
+  top.position.set(0, 0, Math.max(3 * Math.abs(zTrace), 3 * size, 2 * zHigh));
   top.lookAt(0, 0, 0);
+  top.far = top.position.z - Math.min(...floors) + size;
+  top.updateProjectionMatrix();
   // In the inset (layer 1 only): the tip as a dot at the inset's scale, each model's too, and a
-  // cross where the vertical is.
+  // cross where the vertical is; sized for the scale at hand.
   const dot = (color, r) => { const m = new Mesh(new SphereGeometry(r, 16, 8), new MeshBasicMaterial({ color })); m.layers.set(1); return m; };
-  const tipDot = dot(0x000000, extent / 28);
+  const tipDot = dot(0x000000, 1 / 28);
   scene.add(tipDot);
-  for (const o of overlays) { o.dot = dot(new Color(COLORS[o.model.name] || "#777777"), extent / 34); o.group.add(o.dot); }
-  const cross = new Line(new BufferGeometry().setFromPoints([new Vector3(-extent / 12, 0, zTop), new Vector3(extent / 12, 0, zTop),
-    new Vector3(0, 0, zTop), new Vector3(0, extent / 12, zTop), new Vector3(0, -extent / 12, zTop)]), new LineBasicMaterial({ color: 0x888888 }));
+  for (const o of overlays) { o.dot = dot(new Color(COLORS[o.model.name] || "#777777"), 1 / 34); o.group.add(o.dot); }
+  const cross = new Line(new BufferGeometry().setFromPoints([new Vector3(-1 / 12, 0, 0), new Vector3(1 / 12, 0, 0),
+    new Vector3(0, 0, 0), new Vector3(0, 1 / 12, 0), new Vector3(0, -1 / 12, 0)]), new LineBasicMaterial({ color: 0x888888 }));
+  cross.position.z = zTrace;
   cross.layers.set(1);
   scene.add(cross);
+  const insetScale = () => insetExtent[state.exaggerated ? 1 : 0];
+  function placeInset() {
+    const e = insetScale();
+    tipDot.scale.setScalar(e);
+    for (const o of overlays) o.dot.scale.setScalar(e);
+    cross.scale.set(e, e, 1);
+    $("inset-scale").textContent = state.exaggerated
+      ? `${fmt((e / Math.abs(zTrace)) * 1e3, 3)} mrad as drawn (tilt x${EXAGGERATION}, not to scale)`
+      : `${fmt((e / Math.abs(zTrace)) * 1e3, 3)} mrad`;
+  }
 
   // ---- playback ----
-  const state = { time: 0, playing: true, speed: D.playback.speed, frames: 0 };
   const scrub = $("scrub"), speedInput = $("speed"), playButton = $("play"), readout = $("time");
   const speeds = D.playback.speeds;
   speedInput.max = speeds.length - 1;
@@ -220,16 +502,37 @@ function buildView() {
     const box = $(`overlay-${o.model.name}`);
     if (box) box.addEventListener("change", () => { o.group.visible = box.checked; draw(); });
   }
+  const exaggerateBox = $("exaggerate");
+  function setExaggerated(on) {
+    state.exaggerated = on;
+    for (const line of traces) line.geometry.setAttribute("position", line.userData.attributes[on ? 1 : 0]);
+    placeFloor();
+    placeInset();
+    draw();
+  }
+  if (exaggerateBox && !exaggerable) {
+    exaggerateBox.disabled = true;
+    const why = document.createElement("span");
+    why.id = "exaggerate-off";
+    why.textContent = ` Off for this body: its axis is never nearer the vertical than ${fmt((leastTilt * 180) / Math.PI, 3)} degrees, ` +
+      `so ten times its tilt would only draw it upside down.`;
+    exaggerateBox.parentElement.appendChild(why);
+  } else if (exaggerateBox) exaggerateBox.addEventListener("change", () => setExaggerated(exaggerateBox.checked));
+  placeInset();
+  Object.defineProperty(state, "scene", { value: scene, enumerable: false });  // (the test looks for the parts in it)
   window.heavytopView = state;  // for a reader's console (and the browser test's logs)
   // The plots jump the view to a time clicked on them.
   state.seek = (time) => { state.time = Math.max(0, Math.min(T, time)); draw(); };
 
-  const R = new Matrix4(), v = new Vector3();
   function place(time) {
     const u = Math.min((time / T) * (n - 1), n - 1 - 1e-9);
     const i = Math.floor(u);
     const th = lerp(D.nonlinear.theta, u), ph = lerp(D.nonlinear.phi, u), ps = lerp(D.nonlinear.psi, u);
-    bodyGroup.matrix.copy(attitude(th, ph, ps, R));
+    attitude(th, ph, ps, R);
+    state.tilt = Math.acos(Math.max(-1, Math.min(1, R.elements[10])));  // the true tilt, rad
+    if (state.exaggerated) exaggerate(R);
+    state.drawnTilt = Math.acos(Math.max(-1, Math.min(1, R.elements[10])));
+    bodyGroup.matrix.copy(R);
     bodyGroup.matrixWorldNeedsUpdate = true;
     tip(th, ph, v);
     tipMark.position.copy(v);
@@ -241,7 +544,8 @@ function buildView() {
       o.rod.visible = o.end.visible = o.dot.visible = !gone;
       o.trace.geometry.setDrawRange(0, Math.min(i + 1, o.trace.userData.count));
       if (gone) continue;
-      o.rod.matrix.copy(attitude(mt, mp, 0, R));
+      attitude(mt, mp, 0, o.rod.matrix);
+      if (state.exaggerated) exaggerate(o.rod.matrix);
       o.rod.matrixWorldNeedsUpdate = true;
       tip(mt, mp, o.end.position);
       o.dot.position.copy(o.end.position);
@@ -258,6 +562,8 @@ function buildView() {
   }
   window.addEventListener("resize", () => { resize(); draw(); });
   resize();
+  fitCamera();
+  controls.update();
 
   function draw() {
     place(state.time);
@@ -273,13 +579,33 @@ function buildView() {
     renderer.setViewport(x0, y0, s, s);
     renderer.setClearColor(0xffffff);
     renderer.clear();
-    top.left = -extent; top.right = extent; top.top = extent; top.bottom = -extent;
+    const e = insetScale();
+    top.left = -e; top.right = e; top.top = e; top.bottom = -e;
     top.updateProjectionMatrix();
     renderer.render(scene, top);
     renderer.setClearColor(0xf4f6f8);
     renderer.setScissorTest(false);
   }
-  $("inset-scale").textContent = `${fmt((extent / zTop) * 1e3, 3)} mrad`;
+
+  // For the browser test: over `count` times of the motion, the body's lowest point (its drawn
+  // triangles, exactly) against the floor, and whether all of it is inside the camera's view.
+  state.measure = (count = 60) => {
+    const saved = state.time, out = { lowest: Infinity, floor: state.floor, outside: 0, times: count };
+    const b = new Box3(), corner = new Vector3();
+    camera.updateMatrixWorld();
+    for (let k = 0; k <= count; k++) {
+      place((T * k) / count);
+      bodyGroup.updateMatrixWorld(true);
+      b.setFromObject(bodyGroup, true);
+      out.lowest = Math.min(out.lowest, b.min.z);
+      for (let c = 0; c < 8; c++) {
+        corner.set(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z).project(camera);
+        if (Math.abs(corner.x) > 1 || Math.abs(corner.y) > 1) out.outside++;
+      }
+    }
+    place(saved);
+    return out;
+  };
 
   let last = null;
   function frame(now) {

@@ -24,6 +24,16 @@ void pack_verdicts(const std::vector<SweepVerdict>& verdicts, std::string& out);
 /// out of range or the size is not a multiple of kPackedVerdictSize.
 std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes);
 
+/// How many leading records of a sweep's journal (`records`: its file after the head) are
+/// this sweep's, at most grid_size(axes): CSV rows (`packed` false) byte for byte as the sweep
+/// writes them at their grid point (the varied values exactly, each verdict 0 or 1, a
+/// certificate of SPEC section 7 that agrees with the Lyapunov verdict, the nonlinear column
+/// when `nonlinear`), or packed records in range and as consistent (the nonlinear byte 2
+/// exactly when not `nonlinear`). A resumed sweep keeps these and computes the rest: a row off
+/// the grid, rows beyond it, a crash's zero padding are never copied into the map.
+std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
+                                  bool packed);
+
 /// True if this build writes and reads HDF5 maps (it found libhdf5).
 bool hdf5_available();
 

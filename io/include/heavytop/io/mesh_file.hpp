@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// Reading a CAD mesh (STL binary or ASCII, OBJ, PLY) through Assimp, for SPEC section 10's
-/// `shape = "mesh"` parts. Assimp is loaded when the first mesh is read (dlopen), so that no
-/// command that reads none pays for loading it at start-up.
+/// Reading a CAD mesh (STL binary or ASCII, OBJ, PLY ASCII or binary), for SPEC section 10's
+/// `shape = "mesh"` parts, by readers of heavytop's own (no Assimp: a malformed file thrown
+/// out of the dlopen'ed Assimp crashed the static heavytop; tests/test_mesh_file.cpp checks
+/// the readers against Assimp's results).
 
 #include <string>
 
@@ -13,11 +14,12 @@ namespace heavytop::io {
 /// The largest mesh file read_mesh() reads (bytes): 1 GiB, some 20 million triangles of binary STL.
 inline constexpr unsigned long long kMaxMeshBytes = 1ull << 30;
 
-/// The triangles of every mesh in `path` (node transforms applied, polygons triangulated),
-/// coordinates multiplied by `scale` (m per unit of the file). Throws InvalidInput naming
-/// `key` (e.g. "body.part[1] (top.stl)") when the file is missing, cannot be read as a mesh, or
-/// holds no triangles, is not a regular file or is larger than kMaxMeshBytes, and when
-/// Assimp cannot be loaded.
+/// The triangles in `path` (the format by its extension, .stl, .obj or .ply in any case;
+/// polygons triangulated as fans), coordinates multiplied by `scale` (m per unit of the file).
+/// Throws InvalidInput naming `key` (e.g. "body.part[1] (top.stl)") and the file when the file
+/// is missing, empty, not a regular file, larger than kMaxMeshBytes, malformed (what and where:
+/// a truncated binary STL, a face index out of range, a PLY count the file cannot hold...),
+/// has a vertex that is not finite, or holds no triangles.
 TriangleMesh read_mesh(const std::string& path, double scale, const std::string& key);
 
 }  // namespace heavytop::io

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "heavytop/body.hpp"
+#include "heavytop/mass_properties.hpp"
 #include "heavytop/state.hpp"
 #include "heavytop/sweep.hpp"
 
@@ -30,15 +31,32 @@ struct ReportMap {
   std::vector<std::pair<std::string, StabilityMap>> heat_maps() const;
 };
 
+/// One part of a body given by its parts (SPEC section 10), as the report's 3D view draws it:
+/// a solid of revolution on the spin axis at its place, or a mesh from its own triangles (the
+/// file's bytes go into the page, which parses them with three.js's STL, OBJ or PLY loader).
+struct DrawnPart {
+  std::string label;               ///< as messages name it: its shape, or a mesh's file as written
+  std::optional<SolidPart> solid;  ///< a solid of revolution; nullopt for a mesh
+  std::string mesh_file;           ///< a mesh: its file (a relative path already resolved)
+  double scale = 1.0;              ///< a mesh: m per unit of the file
+};
+
+/// The largest mesh file the page carries (bytes): above it, the page draws that part as its
+/// bounding box (a page of 100 MB of base64 would not open).
+inline constexpr unsigned long long kMaxDrawnMeshBytes = 48ull << 20;
+
 /// Writes the report for `body` and `state` into folder `dir` (created if needed): the answer
 /// first (SPEC section 14, as `stability` gives it; for a damped body with its lifetime), then
 /// the 3D view, the models, the motion over `t_end` (s; default: up to the fall and a fifth
 /// more when the body falls, else natural_horizon()), and, if given, the heat maps of `map`.
-/// `source` (the configuration file, "" for the built-in example) is named in the title. Throws
+/// `source` (the configuration file, "" for the built-in example) is named in the title.
+/// `parts`, the body's parts when it was given by them: the 3D view draws those (else the
+/// uniform ellipsoid with the body's mass and moments). Throws
 /// InvalidInput (key "map" or "slice", before anything is made: ReportMap::heat_maps()) for a
 /// map it cannot draw, InvalidInput (key "--output") if the folder cannot be made, io::Failure
 /// if a figure cannot be drawn.
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
-                  const std::optional<ReportMap>& map = std::nullopt, const std::string& source = "");
+                  const std::optional<ReportMap>& map = std::nullopt, const std::string& source = "",
+                  const std::vector<DrawnPart>& parts = {});
 
 }  // namespace heavytop::report
