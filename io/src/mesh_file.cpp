@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -54,11 +55,21 @@ std::string token_shown(std::string_view t) {
 bool parse_double(std::string_view t, double& out) {
   if (t.empty()) return false;
   if (t.front() == '+') t.remove_prefix(1);
+#if defined(__EMSCRIPTEN__)  // its libc++ has no floating-point from_chars (the page, web/)
+  const std::string copy(t);
+  if (std::isspace(static_cast<unsigned char>(copy[0])) || copy[0] == '+' || copy[0] == '0' && copy.size() > 1 &&
+      (copy[1] == 'x' || copy[1] == 'X'))
+    return false;
+  char* stop = nullptr;
+  out = std::strtod(copy.c_str(), &stop);
+  return stop == copy.c_str() + copy.size();
+#else
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), out);
   if (end != t.data() + t.size()) return false;
   if (ec == std::errc::result_out_of_range) out = std::numeric_limits<double>::infinity();  // reported as not finite
   else if (ec != std::errc()) return false;
   return true;
+#endif
 }
 
 bool parse_int(std::string_view t, long long& out) {
@@ -99,7 +110,9 @@ void add_polygon(TriangleMesh& mesh, const std::vector<std::uint32_t>& polygon) 
 
 float read_le_float(const unsigned char* p) {
   std::uint32_t u = std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
-  return std::bit_cast<float>(u);
+  float f;
+  std::memcpy(&f, &u, sizeof f);  // std::bit_cast, which Emscripten's libc++ lacks
+  return f;
 }
 
 void read_binary_stl(std::string_view data, std::uint64_t count, TriangleMesh& mesh) {
