@@ -467,8 +467,8 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
         map         a sweep's file (CSV or HDF5, `heavytop sweep --output`) to draw   [--map]
         slice       (KEY, [V1, ...]): a three-key map's heat maps hold KEY at its grid values
                     nearest these (default: the last key at its first, middle, last)  [--slice]
-        title       the title's first words; None: the Configuration's file, else those of the
-                    command line without --config ("The built-in example, a wooden toy top")
+        title       the title's first words; None: the Configuration's file, "A body given in
+                    Python", or for example_toy_top() the built-in example's title
 
     Runs with the GIL released. Bad input raises InvalidInput naming the argument ("t_end: must
     be finite and > 0", "map: ...", "slice: ..."); a figure gnuplot cannot draw raises RuntimeError.
@@ -477,6 +477,8 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
     state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
     if isinstance(body, Configuration):
         source, state, body = body.path, dict(body.motion), body.body
+    elif body != _core.example_toy_top():
+        source = "A body given in Python"  # the default title names the built-in example, which this is not
     if title is not None:
         source = str(title)
     given = {"theta0": theta0, "phi0": phi0, "theta_rate0": theta_rate0, "phi_rate0": phi_rate0}
@@ -504,7 +506,5 @@ def show(body: "Body | Configuration", folder: "os.PathLike[str] | str | None" =
     (title= to choose)."""
     import tempfile
     folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
-    if "title" not in options and isinstance(body, Body) and body != _core.example_toy_top():
-        options["title"] = "A body given in Python"  # not the built-in example the default title names
     report(body, folder, **options)
     return ReportView(folder, height)
