@@ -182,6 +182,25 @@ TEST(PermanentRotation, StartedOnItTheBodyKeepsItsTiltAndTheLinearVerdictHolds) 
   EXPECT_GT(unstable, 0);
 }
 
+// The classroom gyroscope (examples/horizontal-gyroscope.toml): at the double nearest pi/2 the
+// axle is horizontal, the precession is the textbook m g R / (C w3) exactly (the quadratic's
+// A cos(theta) term vanishes) and there is no second, fast rate (1 / cos of the rounding of
+// pi/2 would give 1e17 rad/s); the nonlinear body started on it keeps its axle level.
+TEST(SteadyPrecession, HorizontalAxleGivesTheTextbookRateAndNoOther) {
+  const Body gyro = make_body(5.3125e-3, 5.3125e-3, 6.25e-4, 0.4905);
+  const double spin = 300.0, tilt = std::numbers::pi / 2;
+  const PrecessionAnalysis p = analyse_precession(gyro, tilt, spin);
+  ASSERT_TRUE(p.slow);
+  EXPECT_NEAR(p.slow->rate, gyro.mgR() / (gyro.C * spin), 1e-15);
+  EXPECT_FALSE(p.fast);
+  EXPECT_FALSE(p.fast_limit);
+  EXPECT_TRUE(permanent_rotations(gyro, tilt).empty());
+  const Simulation sim = simulate(Model::Nonlinear, gyro, p.slow->state, sample_times(p.slow->period, 401));
+  ASSERT_TRUE(sim.summary.ok());
+  for (std::size_t i = 0; i < sim.trajectory.size(); ++i)
+    EXPECT_NEAR(test_support::column(sim.trajectory, "tilt")[i], tilt, 1e-6) << "t = " << sim.trajectory.t[i];
+}
+
 TEST(SteadyPrecession, BadInputIsRefusedNamingTheKey) {
   const Body top = example_toy_top();
   auto key_of = [&](const Body& b, double tilt) {
