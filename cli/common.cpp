@@ -205,13 +205,7 @@ void Inputs::resolve(bool allow_general) {
       const double gravity = body.gravity;
       body = body_of(assembly_.assembly, gravity, assembly_.names);
     } else {  // `body` reports it, `simulate --model nonlinear` integrates it: the tensor as it is
-      const BodyAssembly& a = assembly_.assembly;
-      body.A = a.A;
-      body.B = a.B;
-      body.C = a.C;
-      body.mass = a.total.mass;
-      body.length = a.length;
-      body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
+      body = io::as_given(assembly_.assembly, body);
     }
   } else {
     try {

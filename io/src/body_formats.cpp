@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "heavytop/io/body_parts.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/units.hpp"
 
@@ -50,14 +51,7 @@ std::string body_json(const AssembledBody& body, double gravity) {
   out["offset"] = {{"x", a.offset_x}, {"y", a.offset_y}};
   out["principal_axis_tilt"] = a.principal_tilt;
   out["general"] = a.general();
-  Body as_given;
-  as_given.A = a.A;
-  as_given.B = a.B;
-  as_given.C = a.C;
-  as_given.mass = a.total.mass;
-  as_given.length = a.length;
-  as_given.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
-  if (!is_realizable(as_given)) out["realizable"] = false;  // SPEC section 1
+  if (!is_realizable(as_given(a))) out["realizable"] = false;  // SPEC section 1
   Json parts = Json::array();
   for (std::size_t i = 0; i < body.names.size() && i < body.parts.size(); ++i) {
     const MassProperties& p = body.parts[i];

@@ -25,6 +25,16 @@ AssembledBody assemble_parts(const std::vector<PartSpec>& parts) {
   return out;
 }
 
+Body as_given(const BodyAssembly& a, Body base) {
+  base.A = a.A;
+  base.B = a.B;
+  base.C = a.C;
+  base.mass = a.total.mass;
+  base.length = a.length;
+  base.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
+  return base;
+}
+
 AssembledBody assemble_moments(const Body& body, const std::map<std::string, double>& general) {
   auto value = [&](const char* key) {
     const auto it = general.find(key);

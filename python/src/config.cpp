@@ -42,12 +42,7 @@ py::tuple load_configuration(const std::string& path) {
       body = body_of(a, config.body.gravity, assembled.names);
       body.damping = damping;
     } else {
-      body.A = a.A;
-      body.B = a.B;
-      body.C = a.C;
-      body.mass = a.total.mass;
-      body.length = a.length;
-      body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
+      body = io::as_given(a, body);
     }
   }
   validate(body);

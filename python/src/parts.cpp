@@ -30,13 +30,7 @@ py::tuple assemble_parts(const std::string& text, const std::string& source, dou
   if (!allow_general || !assembled.assembly.general()) {
     body = body_of(assembled.assembly, gravity, assembled.names);
   } else {  // as `simulate --model nonlinear --config` makes it: the tensor about the body axes as it is
-    const BodyAssembly& a = assembled.assembly;
-    body.A = a.A;
-    body.B = a.B;
-    body.C = a.C;
-    body.mass = a.total.mass;
-    body.length = a.length;
-    body.general = {a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y};
+    body = io::as_given(assembled.assembly, body);
   }
   validate(body);
   return py::make_tuple(from_json(io::body_json(assembled, gravity)), py::cast(body));

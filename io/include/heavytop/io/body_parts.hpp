@@ -30,4 +30,9 @@ AssembledBody assemble_parts(const std::vector<PartSpec>& parts);
 /// [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]].
 AssembledBody assemble_moments(const Body& body, const std::map<std::string, double>& general);
 
+/// `base` (its gravity and damping kept) with the assembly's moments, mass and length and its
+/// general part (SPEC section 11) as they are, about the body axes the parts are given in: the
+/// general body `simulate --model nonlinear` integrates (body_of() makes the ordinary body).
+Body as_given(const BodyAssembly& assembly, Body base = {});
+
 }  // namespace heavytop::io
