@@ -1,22 +1,7 @@
 #!/usr/bin/env bash
 # Hostile input and every output path (issue "nothing crashes, nothing is damaged, nothing
 # wrong is said"): each class of failure, the example that found it and more of its own.
-source "$(dirname "$0")/harness.sh"
-
-# Every message heavytop printed in this test, checked at the end for library internals.
-messages="$work/messages"
-: > "$messages"
-# run EXPECTED_RC ARGS...: runs heavytop, keeps its stderr in err and appends it to $messages.
-run() {
-  local expected=$1; shift
-  "$H" "$@" > out 2> err
-  local rc=$?
-  cat err >> "$messages"
-  [ "$rc" -eq "$expected" ] || { echo "  exit $rc, expected $expected: $* :: $(head -c 300 err)"; return 1; }
-}
-one_line() { [ "$(wc -l < err)" -eq 1 ]; }
-says() { grep -q -- "$1" err || { echo "  stderr lacks '$1': $(cat err)"; return 1; }; }
-json() { python3 -c "import json,sys; d=json.load(open('out')); $1"; }
+source "$(dirname "$0")/hostile_harness.sh"
 
 # ---- 1. Output paths: never replace a device or pipe; atomic files; modes; locks ----------------
 if [ -w /dev/null ] && [ "$(id -u)" -eq 0 ]; then

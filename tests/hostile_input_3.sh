@@ -2,20 +2,7 @@
 # Hostile input, round 3 (issue 30): meshes, damped verdicts, lifetime, precession, fit-decay,
 # maps and resumes, empty values, and the first round's leftovers. Each check is a case the
 # review found wrong, and more of its own.
-source "$(dirname "$0")/harness.sh"
-
-messages="$work/messages"
-: > "$messages"
-run() {
-  local expected=$1; shift
-  "$H" "$@" > out 2> err
-  local rc=$?
-  cat err >> "$messages"
-  [ "$rc" -eq "$expected" ] || { echo "  exit $rc, expected $expected: $* :: $(head -c 300 err)"; return 1; }
-}
-one_line() { [ "$(wc -l < err)" -eq 1 ] || { echo "  not one line: $(cat err)"; return 1; }; }
-says() { grep -q -- "$1" err || { echo "  stderr lacks '$1': $(cat err)"; return 1; }; }
-json() { python3 -c "import json,sys; d=json.load(open('out')); $1"; }
+source "$(dirname "$0")/hostile_harness.sh"
 
 # ---- 1. Mesh files: every one reads or is refused (exit 2, the part and the file named) --------
 python3 - <<'PY'
