@@ -5,7 +5,12 @@
 // integrated quantities, wander and answer, 1e-6) for seeded random bodies (symmetric and not,
 // hanging, damped, spins in rpm), simulate equals the CSV (1e-9), bad input throws the command
 // line's one-line message, no request leaves the page's folder, no console error, and typing a
-// spin changes the verdict shown. Then the page's benchmarks (medians, the browser's clock).
+// spin changes the verdict shown; dropping the mesh example gives the body `heavytop body` gives
+// (1e-12), parts added and removed in the list give the command line's body of those parts; the
+// 3D view (WebGL, the report's) draws the mesh's own triangles and moves; a click on the map
+// shows that point's motion in it. Then the page's benchmarks (medians, the browser's clock).
+// With REPORT_DIR (a folder `heavytop report` wrote): the report carries the explorer, which
+// opens inside it at the report's body and spin, and a map point's link opens there.
 // Exit 0 when all pass.
 const puppeteer = require("puppeteer-core");
 const fs = require("fs");
@@ -13,7 +18,7 @@ const os = require("os");
 const path = require("path");
 const { spawnSync } = require("child_process");
 
-const [chromium, heavytop, pageFile, work] = process.argv.slice(2);
+const [chromium, heavytop, pageFile, work, examples, reportDir] = process.argv.slice(2);
 let failures = 0;
 function check(what, ok, detail = "") {
   console.log(`${ok ? "ok  " : "FAIL"} ${what}${detail ? ": " + detail : ""}`);
@@ -124,11 +129,75 @@ function compareTrajectory(page, native, tol) {
   return out;
 }
 
+// The explorer inside a report: the report's folder only, no console error.
+async function checkReport(browser) {
+  const folder = path.resolve(reportDir);
+  const page = await browser.newPage();
+  const foreign = [], errors = [];
+  await page.setRequestInterception(true);
+  page.on("request", (req) => {
+    const url = req.url();
+    const local = url.startsWith("file://") && decodeURIComponent(new URL(url).pathname).startsWith(folder + path.sep);
+    if (local || url.startsWith("data:")) req.continue();
+    else { foreign.push(url); req.abort(); }
+  });
+  page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+  page.on("pageerror", (err) => errors.push(String(err)));
+  await page.goto("file://" + path.join(folder, "report.html"), { waitUntil: "load" });
+  await page.waitForSelector("#scene-canvas", { timeout: 20000 });
+  const t0 = Date.now();
+  await page.click("#explorer-open");
+  const frameHandle = await page.waitForSelector("#explorer-frame:not([hidden])");
+  const frame = await frameHandle.contentFrame();
+  await frame.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 30000 });
+  const inside = await frame.evaluate(() => ({ spin: Number(document.getElementById("spin").value), answer: document.getElementById("answer").textContent,
+                                               canvas: !!document.getElementById("scene-canvas"), version: window.heavytop.version,
+                                               A: Number(document.getElementById("A").value) }));
+  const data = await page.evaluate(() => ({ spin: window.HEAVYTOP_REPORT.spin, A: window.HEAVYTOP_REPORT.body.A }));
+  check("the report opens the explorer inside it at its own body and spin", inside.spin === data.spin && inside.A === data.A && inside.canvas,
+        `${Date.now() - t0} ms; spin ${inside.spin} (report ${data.spin}); ${inside.answer.slice(0, 80)}`);
+  // Its answer is the command line's for the report's body and spin.
+  const cfg = await frame.evaluate(() => heavytopExplorer.config());
+  const toml = await frame.evaluate((c) => heavytopExplorer.toml(c), cfg);
+  const got = await frame.evaluate((c) => heavytop.stability(c), cfg);
+  const native = cli(toml, ["stability", "--format", "json"]);
+  const diff = native.status === 0 ? compare(got, JSON.parse(native.stdout), "", 1e-12, 0, []) : [native.stderr];
+  check("the explorer in the report answers as the command line", diff.length === 0, diff.slice(0, 3).join("; "));
+  await (await page.$("#explorer-embed")).screenshot({ path: path.join(work, "report-explorer.png") });
+  // A map point of the report's own (precomputed) explorer links to the explorer at that point.
+  const link = await page.evaluate(() => {
+    const cv = document.getElementById("explorer"), M = window.HEAVYTOP_REPORT.map, r = cv.getBoundingClientRect();
+    cv.scrollIntoView();
+    const pad = { l: 70, r: 20, t: 20, b: 50 }, pw = cv.width - pad.l - pad.r, ph = cv.height - pad.t - pad.b;
+    const x = pad.l + 0.3 * pw, y = pad.t + 0.35 * ph;
+    const q = cv.getBoundingClientRect();
+    cv.dispatchEvent(new MouseEvent("click", { clientX: q.left + (x * q.width) / cv.width, clientY: q.top + (y * q.height) / cv.height, bubbles: true }));
+    const a = document.getElementById("explorer-point");
+    return a ? { href: a.getAttribute("href"), text: document.getElementById("explorer-info").textContent } : null;
+  });
+  if (check("a map point of the report links to the explorer at that point", !!link && /^explore\.html#config=/.test(link.href), link && link.text.slice(0, 120))) {
+    const config = JSON.parse(decodeURIComponent(link.href.replace(/^explore\.html#config=/, "")));
+    const there = await browser.newPage();
+    there.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+    there.on("pageerror", (err) => errors.push(String(err)));
+    await there.goto("file://" + path.join(folder, link.href), { waitUntil: "load" });
+    await there.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 30000 });
+    const shown = await there.evaluate(() => ({ spin: Number(document.getElementById("spin").value), B: Number(document.getElementById("B").value) }));
+    check("the link opens the explorer at the point's spin and body", shown.spin === config.motion.spin && shown.B === config.body.B,
+          `spin ${shown.spin}, B ${shown.B}`);
+    await there.close();
+  }
+  check("the report with its explorer: no request leaves its folder", foreign.length === 0, foreign.join(" "));
+  check("the report with its explorer: no console error", errors.length === 0, errors.join(" | "));
+  await page.close();
+}
+
 (async () => {
   const folder = path.dirname(path.resolve(pageFile));
   const browser = await puppeteer.launch({
     executablePath: chromium, headless: true,
-    args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+    // WebGL without a GPU: SwiftShader through ANGLE (as browser_report.cjs).
+    args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-gpu-sandbox", "--disable-quic", "--no-first-run", "--disable-background-networking",
            "--disable-component-update", "--disable-sync", "--disable-extensions",
            `--user-data-dir=${fs.mkdtempSync(path.join(os.tmpdir(), "heavytop-chromium-"))}`],
     defaultViewport: { width: 1280, height: 1000 },
@@ -235,13 +304,102 @@ function compareTrajectory(page, native, tol) {
   check("the stability map is drawn", /in \d+ ms/.test(mapInfo), mapInfo);
   // A click on the map shows that point's motion (the inputs move to it).
   const spinBefore = await page.$eval("#spin", (e) => e.value);
-  const box = await (await page.$("#map")).boundingBox();
+  const mapCanvas = await page.$("#map");
+  await mapCanvas.scrollIntoView();
+  const box = await mapCanvas.boundingBox();
   await page.mouse.click(box.x + box.width * 0.8, box.y + box.height * 0.5);
   await new Promise((r) => setTimeout(r, 300));
   const spinAfter = await page.$eval("#spin", (e) => e.value);
   check("clicking the map shows that point's motion", spinAfter !== spinBefore &&
         /computed in/.test(await page.$eval("#motion-info", (e) => e.textContent)), `spin ${spinBefore} -> ${spinAfter}`);
   await page.screenshot({ path: path.join(work, "explore.png"), fullPage: true });
+
+  // ---- the 3D view: WebGL draws and moves ----
+  // The view's canvas (preserveDrawingBuffer) read back: pixels unlike the clear colour, and two
+  // frames 400 ms apart that differ while the time advances.
+  const frame = () => page.evaluate(() => {
+    const c = document.getElementById("scene-canvas");
+    if (!c) return null;
+    const g = document.createElement("canvas");
+    g.width = c.width; g.height = c.height;
+    const x = g.getContext("2d");
+    x.drawImage(c, 0, 0);
+    const d = x.getImageData(0, 0, g.width, g.height).data;
+    let drawn = 0, hash = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (Math.abs(d[i] - 0xf4) + Math.abs(d[i + 1] - 0xf6) + Math.abs(d[i + 2] - 0xf8) > 24 && !(d[i] > 250 && d[i + 1] > 250 && d[i + 2] > 250)) drawn++;
+      hash = (Math.imul(hash, 31) + d[i] + 7 * d[i + 1] + 13 * d[i + 2]) | 0;
+    }
+    return { drawn, pixels: d.length / 4, hash, time: window.heavytopView.time, frames: window.heavytopView.frames,
+             webgl: !!(c.getContext("webgl2") || c.getContext("webgl")) };
+  });
+  const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+  const f1 = await frame();
+  await sleep(400);
+  const f2 = await frame();
+  check("the 3D view draws (WebGL)", f1 && f1.webgl && f1.drawn > 0.02 * f1.pixels, f1 && `${f1.drawn} of ${f1.pixels} pixels drawn`);
+  check("the 3D view moves (two frames differ, time advances)", f1 && f2 && f1.hash !== f2.hash && f2.time > f1.time && f2.frames > f1.frames,
+        f1 && f2 && `t ${f1.time.toFixed(4)} -> ${f2.time.toFixed(4)}, frames ${f1.frames} -> ${f2.frames}`);
+  // A click on the map: the view shows the new point's run (rebuilt, with the point's spin).
+  const viewBefore = await page.evaluate(() => { window.heavytopView.marked = true; return Number(document.getElementById("spin").value); });
+  await page.mouse.click(box.x + box.width * 0.3, box.y + box.height * 0.5);
+  await sleep(400);
+  const viewAfter = await page.evaluate(() => ({ marked: !!window.heavytopView.marked, spin: Number(document.getElementById("spin").value) }));
+  check("clicking the map shows that point's motion in the 3D view", !viewAfter.marked && viewAfter.spin !== viewBefore,
+        `spin ${viewBefore} -> ${viewAfter.spin}`);
+
+  // ---- dropping the mesh example: the body `heavytop body` gives ----
+  const stl = path.join(examples, "meshes", "spinning-top.stl");
+  const bytes = fs.readFileSync(stl);
+  await page.evaluate((b64) => {
+    const data = Uint8Array.from(atob(b64), (ch) => ch.charCodeAt(0));
+    const dt = new DataTransfer();
+    dt.items.add(new File([data], "spinning-top.stl"));
+    const drop = document.getElementById("drop");
+    drop.dispatchEvent(new DragEvent("dragover", { dataTransfer: dt, bubbles: true, cancelable: true }));
+    drop.dispatchEvent(new DragEvent("drop", { dataTransfer: dt, bubbles: true, cancelable: true }));
+  }, bytes.toString("base64"));
+  await page.waitForFunction(() => document.querySelectorAll("#part-list .part").length === 1, { timeout: 5000 })
+    .catch(async (e) => { console.log("state", await page.evaluate(() => ({ config: JSON.stringify(heavytopExplorer.config()), mode: document.getElementById("body-mode").value, parts: document.querySelectorAll("#part-list .part").length, error: document.getElementById("error").textContent }))); console.log("errors", errors); throw e; });
+  // The example's part: millimetres (the drop's default) and maple, 700 kg/m^3, typed in.
+  await page.click("#part-list .part-amount", { clickCount: 3 });
+  await page.keyboard.press("Backspace");
+  await page.type("#part-list .part-amount", "700");
+  await sleep(600);
+  const dropped = await page.evaluate(() => {
+    const c = heavytopExplorer.config();
+    return { config: c, body: heavytopExplorer.body(c), shapes: window.heavytopView.shapes.map((s) => ({ shape: s.shape, triangles: s.triangles })),
+             made: document.getElementById("body-made").textContent };
+  });
+  const exampleBody = spawnSync(heavytop, ["body", "--config", path.join(examples, "mesh-top.toml"), "--format", "json"], { encoding: "utf8" });
+  const bodyDiff = exampleBody.status === 0 ? compare(dropped.body, JSON.parse(exampleBody.stdout), "", 1e-12, 0, []) : [exampleBody.stderr];
+  check("dropping the mesh example gives the body `heavytop body` gives (1e-12)", bodyDiff.length === 0,
+        bodyDiff.slice(0, 4).join("; ") || `${dropped.made}`);
+  const stlTriangles = bytes.readUInt32LE(80);
+  check("the 3D view draws the dropped mesh's own triangles", dropped.shapes.length === 1 && dropped.shapes[0].shape === "mesh" &&
+        dropped.shapes[0].triangles === stlTriangles, `${JSON.stringify(dropped.shapes)}, ${stlTriangles} in the file`);
+  // ---- the parts list: add a part (a steel disc), the command line's body of the same parts ----
+  await page.click("#add-part");
+  await sleep(600);
+  const added = await page.evaluate(() => {
+    const c = heavytopExplorer.config();
+    return { config: c, toml: heavytopExplorer.toml(c), body: heavytopExplorer.body(c), answer: document.getElementById("answer").textContent,
+             shapes: window.heavytopView.shapes.map((s) => s.shape) };
+  });
+  fs.mkdirSync(path.join(work, "meshes"), { recursive: true });
+  fs.copyFileSync(stl, path.join(work, added.config.body.part[0].file));
+  const addedNative = cli(added.toml, ["body", "--format", "json"]);
+  const addedDiff = addedNative.status === 0 ? compare(added.body, JSON.parse(addedNative.stdout), "", 1e-12, 0, []) : [addedNative.stderr];
+  check("a part added in the list: the command line's body of the same parts", added.config.body.part.length === 2 && addedDiff.length === 0 &&
+        added.shapes.join() === "mesh,cylinder" && Math.abs(added.body.mass - dropped.body.mass) > 1e-6,
+        addedDiff.slice(0, 3).join("; ") || `${added.shapes.join()}, mass ${dropped.body.mass} -> ${added.body.mass} kg`);
+  await (await page.$("#scene")).screenshot({ path: path.join(work, "explore-view.png") });
+  await page.screenshot({ path: path.join(work, "explore-parts.png"), fullPage: true });
+  const removeButtons = await page.$$("#part-list .part-remove");
+  await removeButtons[1].click();
+  await sleep(600);
+  const removed = await page.evaluate(() => heavytopExplorer.body(heavytopExplorer.config()));
+  check("removing it gives the mesh's body again", compare(removed, dropped.body, "", 1e-15, 0, []).length === 0, `mass ${removed.mass} kg`);
 
   // ---- benchmarks ----
   const bench = await page.evaluate(() => heavytopExplorer.benchmark());
@@ -251,6 +409,7 @@ function compareTrajectory(page, native, tol) {
 
   check("no request leaves the page's folder", foreign.length === 0, foreign.join(" "));
   check("no console error", errors.length === 0, errors.join(" | "));
+  if (reportDir) await checkReport(browser);
   await browser.close();
   process.exit(failures ? 1 : 0);
 })().catch((err) => { console.log("FAIL", err.stack || err); process.exit(1); });

@@ -18,15 +18,23 @@ check "the page starts at the body given" test $? -eq 0
 "$H" explore > /dev/null 2> err.txt
 check "explore without --output: exit 2" test $? -eq 2 -a "$(wc -l < err.txt)" -eq 1
 
-# A copy of heavytop with no page beside it says how to build it.
-mkdir -p bare && cp "$H" bare/heavytop
-bare/heavytop explore --output x.html 2> err.txt
+# A heavytop that finds no page says how to build it ($HEAVYTOP_EXPLORER_PAGE: only there).
+HEAVYTOP_EXPLORER_PAGE=/nonexistent/heavytop-explore.html "$H" explore --output x.html 2> err.txt
 status=$?
 check "explore without the page: exit 2" test $status -eq 2
 check "explore without the page: says how to build it" grep -q "scripts/build.sh --web" err.txt
 
-NODE_PATH="$NODE_MODULES" "$NODE" "$here/browser_explore.cjs" "$CHROMIUM" "$H" page/explore.html "$PWD/cli"
+# Every report carries the explorer (explore.html beside report.html, the report's 3D view script
+# shared); without a page it has none and says nothing of it.
+"$H" report --output report > /dev/null
+check "the report carries the explorer" test $? -eq 0 -a -s report/explore.html
+check "the report's explorer shares its 3D view script" grep -q "<script src='heavytop-report.js'></script>" report/explore.html
+HEAVYTOP_EXPLORER_PAGE= "$H" report --output report-bare --t-end 1 > /dev/null
+check "a report without the page: no explorer" test $? -eq 0 -a ! -e report-bare/explore.html
+check "a report without the page: no link to it" bash -c "! grep -q explore.html report-bare/report.html"
+
+NODE_PATH="$NODE_MODULES" "$NODE" "$here/browser_explore.cjs" "$CHROMIUM" "$H" page/explore.html "$PWD/cli" "$(realpath "$here/../examples")" "$PWD/report"
 check "in the browser" test $? -eq 0
 cp cli/benchmark.json "$ARTEFACTS/explore-benchmark.json" 2>/dev/null
-cp cli/explore.png "$ARTEFACTS/explore.png" 2>/dev/null
+for f in explore explore-view explore-parts report-explorer; do cp cli/$f.png "$ARTEFACTS/$f.png" 2>/dev/null; done
 finish

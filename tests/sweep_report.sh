@@ -138,7 +138,11 @@ assert len(rows) == 1 + 4001
 html = open(os.path.join(d, "report.html")).read()
 for src in re.findall(r"(?:src|href)='([^']*)'", html):
     assert "/" not in src and ":" not in src and os.path.exists(os.path.join(d, src)), src   # every file local, in DIR
-assert sum(os.path.getsize(os.path.join(d, f)) for f in os.listdir(d)) < 5e6   # README: under 5 MB
+# README: the report under 5 MB; the explorer page it carries (when built) is counted on its own,
+# under issue 27's 5 MB for the page with everything it loads (it shares heavytop-report.js).
+assert sum(os.path.getsize(os.path.join(d, f)) for f in os.listdir(d) if f != "explore.html") < 5e6
+assert not os.path.exists(os.path.join(d, "explore.html")) or \
+    os.path.getsize(os.path.join(d, "explore.html")) + os.path.getsize(os.path.join(d, "heavytop-report.js")) < 5e6
 # A hanging body: its diagram does not say the top stands up.
 titles = " ".join(e.text or "" for e in ET.parse(os.path.join(hanging, "stability-diagram.svg")).getroot().iter())
 assert "stands up" not in titles and "hanging body" in titles and "axis swings out" in titles, titles[:400]

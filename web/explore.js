@@ -58,6 +58,19 @@
   }
   function stability(config) { return JSON.parse(check(core.stability(toml(config)))); }
   function lifetime(config) { return JSON.parse(check(core.lifetime(toml(config)))); }
+  // `heavytop body --format json`: the body the configuration describes (of its parts, meshes read).
+  function body(config) { return JSON.parse(check(core.body(toml(config)))); }
+  // The 3D view's data for the nonlinear run over t_end s (report::view_data(): what the report draws).
+  function view(config, t_end = 10, samples = 1001) { return JSON.parse(check(core.view(toml(config), t_end, samples))); }
+  // A file the configuration can name (a dropped mesh), in the core's in-memory file system.
+  function putFile(path, bytes) {
+    const folders = path.split("/").slice(0, -1);
+    for (let i = 1; i <= folders.length; i++) {
+      const dir = folders.slice(0, i).join("/");
+      if (dir && !core.FS.analyzePath(dir).exists) core.FS.mkdir(dir);
+    }
+    core.FS.writeFile(path, bytes);
+  }
   function parseCsv(text) {
     const lines = text.split("\n");
     const columns = lines[0].split(",");
@@ -89,16 +102,135 @@
   }
 
   // ---- The page -------------------------------------------------------------------------------
-  const initial = window.HEAVYTOP_INITIAL || {
+  // A link may carry the start: explore.html#config={...} (the report's map points link so).
+  const fromLink = (() => {
+    const m = /^#config=(.*)$/.exec(location.hash);
+    if (!m) return null;
+    try { return JSON.parse(decodeURIComponent(m[1])); } catch (e) { return null; }
+  })();
+  const initial = fromLink || window.HEAVYTOP_INITIAL || {
     body: { A: 6.0e-6 + 3.75e-5, B: 6.0e-6 + 3.75e-5, C: 1.2e-5, mass: 0.060, length: 0.025, gravity: 9.81 },
     motion: { spin: 200.0, theta0: 0.05, phi0: 0 },
     damping: { transverse: 0, axial: 0, friction: 0 },
   };
   const bodyKeys = ["A", "B", "C", "mass", "length", "gravity"];
+  const momentKeys = ["A", "B", "C", "mass", "length"];
+  // ---- The parts list ([[body.part]], SPEC section 10) --------------------------------------
+  // Each part's keys by shape, with their units; "density" or "mass" besides.
+  const partKeys = {
+    cylinder: [["radius", "m"], ["height", "m"], ["z0", "m"]],
+    tube: [["radius", "m"], ["inner_radius", "m"], ["height", "m"], ["z0", "m"]],
+    cone: [["radius", "m"], ["height", "m"], ["z0", "m"], ["apex", ""]],
+    sphere: [["radius", "m"], ["z0", "m"]],
+    mesh: [["file", ""], ["units", ""]],
+  };
+  const choices = { apex: ["down", "up"], units: ["m", "mm"] };
+  let parts = [];  // the parts as the configuration lists them (numbers, or text for file, units, apex)
+  function drawParts() {
+    const list = $("part-list");
+    list.innerHTML = "";
+    parts.forEach((part, i) => {
+      const box = document.createElement("div");
+      box.className = "part";
+      box.dataset.index = i;
+      list.append(box);
+      const head = document.createElement("div");
+      head.className = "part-head";
+      const shape = document.createElement("select");
+      shape.className = "part-shape";
+      for (const k of Object.keys(partKeys)) { const o = document.createElement("option"); o.value = o.textContent = k; shape.append(o); }
+      shape.value = part.shape;
+      shape.addEventListener("change", () => {
+        const next = { shape: shape.value, [part.mass !== undefined ? "mass" : "density"]: part.mass ?? part.density };
+        for (const [k] of partKeys[shape.value]) if (part[k] !== undefined) next[k] = part[k];
+        parts[i] = next;
+        drawParts();
+        changed(true);
+      });
+      const remove = document.createElement("button");
+      remove.type = "button";
+      remove.className = "part-remove";
+      remove.textContent = "remove";
+      remove.addEventListener("click", () => { parts.splice(i, 1); drawParts(); changed(true); });
+      head.append(`body.part[${i}] `, shape, remove);
+      box.append(head);
+      const field = (key, unit, element) => {
+        const label = document.createElement("label");
+        label.append(key, element);
+        const u = document.createElement("span"); u.className = "unit"; u.textContent = unit; label.append(u);
+        box.append(label);
+      };
+      for (const [key, unit] of partKeys[part.shape]) {
+        let input;
+        if (choices[key]) {
+          input = document.createElement("select");
+          for (const c of choices[key]) { const o = document.createElement("option"); o.value = o.textContent = c; input.append(o); }
+          input.value = part[key] ?? choices[key][0];
+          input.addEventListener("change", () => { part[key] = input.value; changed(true); });
+        } else if (key === "file") {
+          input = document.createElement("input");
+          input.type = "text"; input.readOnly = true; input.value = part.file ?? "";
+        } else {
+          input = document.createElement("input");
+          input.type = "number"; input.step = "any"; input.value = part[key] ?? "";
+          input.addEventListener("input", () => { part[key] = input.value.trim() === "" ? undefined : Number(input.value); changed(true); });
+        }
+        input.className = `part-${key}`;
+        field(key, unit, input);
+      }
+      // density or mass: exactly one (SPEC).
+      const which = document.createElement("select");
+      which.className = "part-amount-key";
+      for (const c of ["density", "mass"]) { const o = document.createElement("option"); o.value = o.textContent = c; which.append(o); }
+      which.value = part.mass !== undefined ? "mass" : "density";
+      const amount = document.createElement("input");
+      amount.type = "number"; amount.step = "any"; amount.className = "part-amount";
+      amount.value = part[which.value] ?? "";
+      const unit = () => (which.value === "mass" ? "kg" : "kg/m³");
+      const read = () => {
+        delete part.density; delete part.mass;
+        if (amount.value.trim() !== "") part[which.value] = Number(amount.value);
+        amount.nextSibling.textContent = unit();
+      };
+      which.addEventListener("change", () => { read(); changed(true); });
+      amount.addEventListener("input", () => { read(); changed(true); });
+      const label = document.createElement("label");
+      const u = document.createElement("span"); u.className = "unit"; u.textContent = unit();
+      label.append(which, amount, u);
+      box.append(label);
+    });
+  }
+  const defaultPart = () => ({ shape: "cylinder", radius: 0.02, height: 0.005, z0: 0.02, density: 7800 });
+  // A dropped mesh: its bytes into the core's file system as meshes/NAME (meshes/2-NAME for a
+  // second file of that name), a mesh part naming it.
+  const meshNames = new Set();
+  function addMesh(name, bytes) {
+    const clean = (name.split(/[\\/]/).pop() || "mesh.stl").replace(/[^A-Za-z0-9._-]/g, "_");
+    let path = `meshes/${clean}`;  // as a configuration beside its meshes/ folder names it
+    for (let k = 2; meshNames.has(path); k++) path = `meshes/${k}-${clean}`;  // another file of that name
+    meshNames.add(path);
+    putFile(path, bytes);
+    if ($("body-mode").value !== "parts") { $("body-mode").value = "parts"; parts = []; showMode(); }
+    parts.push({ shape: "mesh", file: path, units: "mm", density: 1000 });
+    drawParts();
+    changed(true);
+    return path;
+  }
+  function showMode() {
+    const byParts = $("body-mode").value === "parts";
+    $("moments").classList.toggle("hidden", byParts);
+    $("parts").classList.toggle("hidden", !byParts);
+  }
   const dampingKeys = ["transverse", "axial", "friction"];
   const rpm = 60 / (2 * Math.PI);
   function fillInputs(c) {
-    for (const k of bodyKeys) $(k).value = c.body[k] ?? (k === "gravity" ? 9.81 : "");
+    if (c.body.part) {
+      $("body-mode").value = "parts";
+      parts = c.body.part.map((p) => ({ ...p }));
+      drawParts();
+    } else $("body-mode").value = "moments";
+    showMode();
+    for (const k of bodyKeys) if (!c.body.part || k === "gravity") $(k).value = c.body[k] ?? (k === "gravity" ? 9.81 : "");
     $("spin").value = $("spin-unit").value === "rpm" ? (c.motion.spin || 0) * rpm : c.motion.spin || 0;
     $("theta0").value = c.motion.theta0 || 0;
     $("phi0").value = c.motion.phi0 || 0;
@@ -108,7 +240,10 @@
   function readInputs() {
     const num = (id) => ($(id).value.trim() === "" ? undefined : Number($(id).value));
     const c = { body: {}, motion: {}, damping: {} };
-    for (const k of bodyKeys) c.body[k] = num(k);
+    if ($("body-mode").value === "parts") {
+      c.body.gravity = num("gravity");
+      c.body.part = parts.map((p) => ({ ...p }));
+    } else for (const k of bodyKeys) c.body[k] = num(k);
     const spin = num("spin");
     if ($("spin-unit").value === "rpm") c.motion.spin_rpm = spin; else c.motion.spin = spin;
     c.motion.theta0 = num("theta0");
@@ -126,10 +261,18 @@
   const intervals = (list) => (list || []).map(([a, b]) => `[${fmt(a)}, ${b === null ? "∞" : fmt(b)}]`).join(" ∪ ") || "none";
 
   let firstVerdictAt = null, current = null;
+  // The body of parts as the core makes it (heavytop body's JSON), for the map's axes and shown.
+  let madeBody = null;
   function showVerdict() {
     const config = readInputs();
     let s;
     try {
+      if (config.body.part) {
+        madeBody = body(config);
+        const b = madeBody;
+        $("body-made").textContent = `They make A = ${fmt(b.A, 6)}, B = ${fmt(b.B, 6)}, C = ${fmt(b.C, 6)} kg m², ` +
+          `mass ${fmt(b.mass, 6)} kg, centre of mass at ${fmt(b.length, 6)} m on the axis (heavytop body).`;
+      }
       s = stability(config);
       $("error").textContent = "";
     } catch (e) {
@@ -188,14 +331,17 @@
   // ---- The stability map ----------------------------------------------------------------------
   const mapKeys = ["spin", "B/A", "C/A", "A", "B", "C", "mass", "length", "gravity"];
   let mapState = null;
+  // The body's moments: as given, or as its parts make them.
+  const momentsOf = (c) => (c.body.part ? { ...(madeBody || {}), gravity: c.body.gravity } : c.body);
   function baseValue(c, key) {
     if (key === "spin") return c.motion.spin ?? (c.motion.spin_rpm ?? 0) / rpm;
-    if (key === "B/A") return c.body.B / c.body.A;
-    if (key === "C/A") return c.body.C / c.body.A;
-    return c.body[key];
+    const b = momentsOf(c);
+    if (key === "B/A") return b.B / b.A;
+    if (key === "C/A") return b.C / b.A;
+    return b[key];
   }
   function defaultRange(key) {
-    const c = readInputs(), v = baseValue(c, key);
+    const c0 = readInputs(), c = { ...c0, body: momentsOf(c0) }, v = baseValue(c, key);
     if (key === "spin") return [0, Math.max(1, 2 * Math.abs(v))];
     // The ratios a real body can take with the other moments held (the triangle inequalities).
     if (key === "B/A") return [Math.abs(c.body.C - c.body.A) / c.body.A * (1 + 1e-6) + 1e-6, (c.body.C + c.body.A) / c.body.A * (1 - 1e-6)];
@@ -247,6 +393,12 @@
       `green: stable (${$("map-model").selectedOptions[0].text}), yellow: linearized stable only, red: unstable`;
   }
   function setKey(c, key, value) {
+    // A body of parts moved along a body key is given by its moments from there on.
+    if (key !== "spin" && c.body.part) {
+      const b = momentsOf(c);
+      c.body = { gravity: b.gravity };
+      for (const k of momentKeys) c.body[k] = b[k];
+    }
     if (key === "spin") { delete c.motion.spin_rpm; c.motion.spin = value; }
     else if (key === "B/A") c.body.B = value * c.body.A;
     else if (key === "C/A") c.body.C = value * c.body.A;
@@ -293,11 +445,36 @@
     $("motion-info").textContent = `The nonlinear body's tilt from the vertical over 10 s (largest ${deg(Math.max(...tilt))}), computed in ${ms.toFixed(0)} ms. Click the map to see another point's motion.`;
   }
 
+  // ---- The 3D view: the report's own (report/web/src/main.js), on this page's run ------------------
+  let shown3d = null;
+  function drawView() {
+    const note = $("view-note");
+    if (!window.heavytopView3D) { note.textContent = `No 3D view in this page: ${window.heavytopView3DMissing}.`; return; }
+    let data;
+    const t0 = performance.now();
+    try { data = view(readInputs(), 10, 1001); }
+    catch (e) { note.textContent = "3D view: " + e.message; return; }
+    if (shown3d) shown3d.dispose();
+    shown3d = window.heavytopView3D.show(data);
+    const what = data.parts.length ? `its ${data.parts.length} part${data.parts.length > 1 ? "s" : ""} (${data.parts.map((p) => p.shape).join(", ")})`
+                                   : "the uniform ellipsoid with its mass and moments" + (data.shape.note ? ` (not to scale: ${data.shape.note})` : "");
+    note.textContent = `The body drawn as ${what}; the run computed and drawn in ${(performance.now() - t0).toFixed(0)} ms.`;
+  }
+
   function update(what = {}) {
     const ok = showVerdict();
     if (!ok) return;
     drawMotion();
+    drawView();
     if (what.map) drawMap();
+  }
+  let pending = false;
+  // An input changed: the verdict at once, on every keystroke; the motion, the view (and the map) after a pause.
+  function changed(map) {
+    showVerdict();
+    if (pending) return;
+    pending = true;
+    setTimeout(() => { pending = false; update({ map }); }, 150);
   }
 
   function setupMap(key, which) {
@@ -320,13 +497,28 @@
     $("map-y").value = "B/A";
     fillInputs(initial);
     setupMap("spin", "x"); setupMap("B/A", "y");
-    let pending = false;
-    const schedule = (map) => {
-      showVerdict();  // the verdict at once, on every keystroke
-      if (pending) return;
-      pending = true;
-      setTimeout(() => { pending = false; update({ map }); }, 150);
-    };
+    const schedule = changed;
+    $("body-mode").addEventListener("change", () => {
+      const c = readInputs();
+      if ($("body-mode").value === "parts" && !parts.length) parts = [defaultPart()];
+      if ($("body-mode").value === "moments" && madeBody)  // the parts' moments, to go on from
+        for (const k of momentKeys) $(k).value = madeBody[k];
+      showMode();
+      drawParts();
+      schedule(true);
+      return c;
+    });
+    $("add-part").addEventListener("click", () => { parts.push(defaultPart()); drawParts(); schedule(true); });
+    const drop = $("drop");
+    const take = (file) => file.arrayBuffer().then((b) => addMesh(file.name, new Uint8Array(b)));
+    drop.addEventListener("dragover", (e) => { e.preventDefault(); drop.classList.add("over"); });
+    drop.addEventListener("dragleave", () => drop.classList.remove("over"));
+    drop.addEventListener("drop", (e) => {
+      e.preventDefault();
+      drop.classList.remove("over");
+      for (const f of e.dataTransfer.files) take(f);
+    });
+    $("mesh-file").addEventListener("change", (e) => { for (const f of e.target.files) take(f); });
     for (const id of [...bodyKeys, "spin", "theta0", "phi0", ...dampingKeys]) $(id).addEventListener("input", () => schedule(true));
     $("spin-unit").addEventListener("change", () => {
       const v = Number($("spin").value);
@@ -337,7 +529,7 @@
     for (const id of ["map-x0", "map-x1", "map-y0", "map-y1", "map-n", "map-model"]) $(id).addEventListener("change", drawMap);
     $("map").addEventListener("click", mapClick);
     showVerdict();
-    setTimeout(() => { drawMotion(); drawMap(); document.body.dataset.ready = "1"; }, 0);
+    setTimeout(() => { drawMotion(); drawView(); drawMap(); document.body.dataset.ready = "1"; }, 0);
   }
 
   // ---- Benchmarks (browser clock; medians) ------------------------------------------------------
@@ -362,7 +554,7 @@
     core = m;
     coreReadyAt = performance.now();
     window.heavytop = Object.freeze({ stability, simulate, version: m.version() });
-    window.heavytopExplorer = { toml, map, lifetime, benchmark, loadStart };
+    window.heavytopExplorer = { toml, map, lifetime, body, view, putFile, addMesh, config: readInputs, benchmark, loadStart };
     start();
   });
 })();

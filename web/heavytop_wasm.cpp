@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fcntl.h>
@@ -32,6 +33,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/io/config.hpp"
+#include "heavytop/report/report.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/sweep.hpp"
 #include "heavytop/version.hpp"
 
@@ -127,6 +130,32 @@ Result map_verdicts(std::vector<unsigned char>& bytes, const std::string& config
   return run("sweep", make, config, {});
 }
 
+// What the 3D view draws (the report's own view data, report::view_data()): the nonlinear run of
+// the configuration's body over t_end (s) at `samples` times, by the integrator `simulate`
+// chooses unasked, and the body's parts as the report draws them (a mesh from its file).
+Result view_of(const std::string& config, double t_end, int samples) {
+  const auto make = [&](CLI::App& app) -> cli::Action {
+    auto* cmd = app.add_subcommand("view", "");
+    auto inputs = std::make_shared<cli::Inputs>(*cmd, std::vector<std::string>{"json"});
+    return [&, inputs] {
+      inputs->resolve();
+      if (!(std::isfinite(t_end) && t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
+      if (samples < 2) throw InvalidInput("--samples", "must be an integer >= 2");
+      SimulateOptions options;
+      options.integrator = Integrator::Auto;
+      const Simulation run = simulate(Model::Nonlinear, inputs->body(), inputs->state(),
+                                      sample_times(t_end, static_cast<std::size_t>(samples)), options);
+      if (!run.summary.ok()) throw cli::Failure(run.summary.message);
+      std::vector<report::DrawnPart> parts;  // as `heavytop report` hands them on (cli/report_command.cpp)
+      for (const io::PartSpec& p : inputs->configuration().parts)
+        parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
+                               : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
+      cli::write_output(inputs->output(), report::view_data(inputs->body(), run.trajectory, parts));
+    };
+  };
+  return run("view", make, config, {});
+}
+
 #if defined(__EMSCRIPTEN__)
 std::string version() { return std::string("heavytop ") + std::string(kVersion); }
 
@@ -149,6 +178,14 @@ emscripten::val stability(const std::string& config) {
 emscripten::val lifetime(const std::string& config) {
   return to_js(run("lifetime", cli::add_lifetime_command, config, {"--format", "json"}));
 }
+
+// `heavytop body --format json`: the body's mass properties (of its parts, meshes read from the
+// in-memory file system, where the page puts a dropped file).
+emscripten::val body(const std::string& config) {
+  return to_js(run("body", cli::add_body_command, config, {"--format", "json"}));
+}
+
+emscripten::val js_view(const std::string& config, double t_end, int samples) { return to_js(view_of(config, t_end, samples)); }
 
 // args: the simulate flags the page passes (--model, --t-end, --samples), as text.
 emscripten::val js_simulate(const std::string& config, const std::vector<std::string>& args) {
@@ -174,6 +211,8 @@ EMSCRIPTEN_BINDINGS(heavytop) {
   emscripten::register_vector<std::string>("StringList");
   emscripten::function("stability", &stability);
   emscripten::function("lifetime", &lifetime);
+  emscripten::function("body", &body);
+  emscripten::function("view", &js_view);
   emscripten::function("simulate", &js_simulate);
   emscripten::function("stabilityMap", &js_stability_map);
   emscripten::function("version", &version);

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -192,46 +193,71 @@ nlohmann::json parts_json(const std::vector<DrawnPart>& parts) {
   return out;
 }
 
-/// The report's numbers for its page script (report/web/src/main.js), as a classic script that
-/// assigns window.HEAVYTOP_REPORT (pages opened from file:// may not fetch() a JSON file).
-std::string page_data_js(const Body& body, const InitialState& state, const Comparison& c,
-                         const std::vector<SweepAxis>& map_axes, const std::vector<SweepVerdict>& map,
-                         const DiagramGrid& diagram, const std::vector<DrawnPart>& parts) {
-  using nlohmann::json;
-  const std::size_t n = c.nonlinear.size();
-  const std::vector<std::size_t> shown = display_samples(n);
-  // A value that is not finite, or past the end of a model's trajectory (one that stopped on a
-  // numerical failure), is null: the page leaves a gap, never a made-up number.
-  auto value = [](const std::vector<double>& v, std::size_t i) {
-    return i < v.size() && std::isfinite(v[i]) ? json(display(v[i])) : json(nullptr);
-  };
-  auto pick = [&](const std::vector<double>& v) {
-    json a = json::array();
-    for (std::size_t i : shown) a.push_back(value(v, i));
+/// The samples the page shows of a run of n, and a series' values at them: a value that is not
+/// finite, or past the end of a model's trajectory (one that stopped on a numerical failure), is
+/// null: the page leaves a gap, never a made-up number.
+struct Shown {
+  std::vector<std::size_t> index;
+  explicit Shown(std::size_t n) : index(display_samples(n)) {}
+  static nlohmann::json value(const std::vector<double>& v, std::size_t i) {
+    return i < v.size() && std::isfinite(v[i]) ? nlohmann::json(display(v[i])) : nlohmann::json(nullptr);
+  }
+  nlohmann::json pick(const std::vector<double>& v) const {
+    nlohmann::json a = nlohmann::json::array();
+    for (std::size_t i : index) a.push_back(value(v, i));
     return a;
-  };
-  const std::vector<double> psi = spin_angles(body, c.nonlinear);
+  }
+};
+
+/// What the 3D view draws (report/web/src/main.js buildView()): the body, as its parts or its
+/// equivalent ellipsoid, moving as `nonlinear` (theta, phi and the spin angle psi), and the
+/// playback speed.
+nlohmann::json view_json(const Body& body, const Trajectory& nonlinear, const std::vector<DrawnPart>& parts) {
+  using nlohmann::json;
+  const std::size_t n = nonlinear.size();
+  const Shown shown(n);
+  const std::vector<double> psi = spin_angles(body, nonlinear);
   double spin_rate = 0.0;  // rad/s, the fastest spin of the samples (for the page's aliasing note)
   for (std::size_t i = 1; i < n; ++i)
-    if (c.nonlinear.t[i] > c.nonlinear.t[i - 1])
-      spin_rate = std::max(spin_rate, std::abs(psi[i] - psi[i - 1]) / (c.nonlinear.t[i] - c.nonlinear.t[i - 1]));
+    if (nonlinear.t[i] > nonlinear.t[i - 1])
+      spin_rate = std::max(spin_rate, std::abs(psi[i] - psi[i - 1]) / (nonlinear.t[i] - nonlinear.t[i - 1]));
   // Playback: the fastest of these speeds at which the spin turns at most 30 degrees a frame
   // (60 frames a second) and the motion lasts at least 8 s; else the slowest.
   const std::vector<double> speeds{1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0};
-  const double horizon = n ? c.nonlinear.t.back() : 0.0;
+  const double horizon = n ? nonlinear.t.back() : 0.0;
   double speed = speeds.front();
   for (double s : speeds)
     if (s * spin_rate / 60.0 <= std::numbers::pi / 6.0 && horizon / s >= 8.0) speed = s;
+  const EquivalentEllipsoid shape = equivalent_ellipsoid(body);
+  return {
+      {"body", {{"A", body.A}, {"B", body.B}, {"C", body.C}, {"mass", body.mass}, {"gravity", body.gravity}, {"length", body.length}}},
+      {"t", shown.pick(nonlinear.t)},
+      {"display", {{"samples", shown.index.size()}, {"computed_samples", n}}},
+      {"nonlinear", {{"theta", shown.pick(nonlinear.theta)}, {"phi", shown.pick(nonlinear.phi)}, {"psi", shown.pick(psi)}}},
+      {"models", json::array()},
+      {"shape", {{"semi_axes", shape.semi_axes}, {"centre", shape.centre}, {"note", shape.note}}},
+      {"parts", parts_json(parts)},
+      {"playback", {{"speed", speed}, {"speeds", speeds}, {"spin_rate", spin_rate}}},
+  };
+}
 
+/// The report's numbers for its page script (report/web/src/main.js), as a classic script that
+/// assigns window.HEAVYTOP_REPORT (pages opened from file:// may not fetch() a JSON file): the
+/// 3D view's (view_json()), every model's motion, the map and the diagram.
+std::string page_data_js(const Body& body, const InitialState& state, const Comparison& c,
+                         const std::vector<SweepAxis>& map_axes, const std::vector<SweepVerdict>& map,
+                         const DiagramGrid& diagram, const std::vector<DrawnPart>& parts, bool explorer) {
+  using nlohmann::json;
+  const Shown shown(c.nonlinear.size());
+  const double horizon = c.nonlinear.size() ? c.nonlinear.t.back() : 0.0;
   json models = json::array();
   for (const auto& m : c.models) {
     json errors = json::array();
-    for (std::size_t i : shown)
-      errors.push_back(i < m.trajectory.size() ? value({angle_error(m.trajectory, c.nonlinear, i)}, 0) : json(nullptr));
-    models.push_back({{"name", m.model}, {"theta", pick(m.trajectory.theta)}, {"phi", pick(m.trajectory.phi)},
+    for (std::size_t i : shown.index)
+      errors.push_back(i < m.trajectory.size() ? Shown::value({angle_error(m.trajectory, c.nonlinear, i)}, 0) : json(nullptr));
+    models.push_back({{"name", m.model}, {"theta", shown.pick(m.trajectory.theta)}, {"phi", shown.pick(m.trajectory.phi)},
                       {"error", errors}, {"diverged_at", m.diverged_at ? json(*m.diverged_at) : json(nullptr)}});
   }
-  const EquivalentEllipsoid shape = equivalent_ellipsoid(body);
   const AngleUnit unit = angle_unit(c);
   auto axis = [](const SweepAxis& a) {
     const std::string label = a.key == "spin" ? "spin w0 (rad/s)" : a.key;
@@ -250,28 +276,25 @@ std::string page_data_js(const Body& body, const InitialState& state, const Comp
     points.push_back({display(p[0]), display(p[1]), diagram.verdicts[i].nonlinear.value_or(false) ? 1 : 0});
   }
   const auto [up_word, down_word] = diagram_words(body);
-  const json data = {
-      {"body", {{"A", body.A}, {"B", body.B}, {"C", body.C}, {"mass", body.mass}, {"gravity", body.gravity}, {"length", body.length}}},
+  json data = view_json(body, c.nonlinear, parts);
+  data.update({
       {"spin", state.spin},
-      {"t", pick(c.nonlinear.t)},
-      {"display", {{"samples", shown.size()}, {"computed_samples", n}}},
-      {"nonlinear", {{"theta", pick(c.nonlinear.theta)}, {"phi", pick(c.nonlinear.phi)}, {"psi", pick(psi)}}},
       {"models", models},
       {"angle_scale", unit.scale},
       {"angle_unit", unit.name},
-      {"shape", {{"semi_axes", shape.semi_axes}, {"centre", shape.centre}, {"note", shape.note}}},
-      {"parts", parts_json(parts)},
-      {"playback", {{"speed", speed}, {"speeds", speeds}, {"spin_rate", spin_rate}}},
       {"map", {{"x", axis(map_axes[0])}, {"y", axis(map_axes[1])}, {"verdicts", verdicts}, {"certificates", certificates}}},
       {"certificates", certificate_names},
       {"diagram", {{"points", points}, {"start_tilt", diagram.start_tilt}, {"max_tilt", diagram.max_tilt},
                    {"horizon", diagram.horizon}, {"up_word", up_word}, {"down_word", down_word}}},
       {"body_point", {body.B / body.A, std::abs(state.spin)}},
+      // The explorer beside the report (explore.html): a map point's motion opens there.
+      {"explorer", explorer},
+      {"start", {{"theta0", state.theta0}, {"phi0", state.phi0}, {"theta_rate0", state.theta_rate0}, {"phi_rate0", state.phi_rate0}}},
       {"cli_body", fmt::format("--A {:g} --C {:g} --mass {:g} --gravity {:g} --length {:g}", body.A, body.C, body.mass,
                                body.gravity, body.length)},
       {"cli_start", fmt::format("--theta0 {:g} --phi0 {:g} --theta-rate0 {:g} --phi-rate0 {:g} --t-end {:g} --samples 2001",
                                 state.theta0, state.phi0, state.theta_rate0, state.phi_rate0, horizon)},
-  };
+  });
   return "// Written by heavytop report: the numbers behind report.html's interactive view.\nwindow.HEAVYTOP_REPORT = " +
          data.dump() + ";\n";
 }
@@ -358,6 +381,7 @@ th { background: #f2f2f2; } td.ok { color: #1a7f1a; font-weight: bold; } td.bad 
 figure { margin: 1.5em 0; } figure img { width: 100%; border: 1px solid #ddd; } figcaption { color: #555; font-size: .95em; }
 .note { background: #fff8e1; border-left: 4px solid #f9a825; padding: .5em 1em; }
 #scene { width: 100%; } #scene canvas { display: block; border: 1px solid #ddd; }
+#explorer-frame { width: 100%; height: 1500px; border: 1px solid #ccc; }
 .controls { display: flex; flex-wrap: wrap; gap: .6em 1.4em; align-items: center; margin: .6em 0; }
 label.exaggerate { background: #fff3e0; border: 1px solid #f0b070; padding: .2em .6em; border-radius: 4px; }
 .controls button { font-size: 1em; padding: .25em 1.2em; } #scrub { width: 22em; }
@@ -485,7 +509,11 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   };
   if (life) data.emplace_back("lifetime.json", io::lifetime_json(*life));
   const auto assets = detail::web_assets();
-  if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram, parts));
+  // The explorer (SPEC section 15) beside the report, so that it answers other spins and bodies
+  // than its own: the page, starting at this body and motion, with the report's 3D view script.
+  const std::optional<std::string> explorer = explorer_page(body, state, !assets.empty());
+  if (explorer) data.emplace_back("explore.html", *explorer);
+  if (!assets.empty()) data.emplace_back("report-data.js", page_data_js(body, state, c, axes, verdicts, diagram, parts, explorer.has_value()));
 
   std::ostringstream html;
   const std::string title = fmt::format("{}: {}", source.empty() ? "The built-in example, a wooden toy top" : source,
@@ -574,6 +602,17 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
                           "<a href='{0}.svg'>SVG</a>)</figcaption></figure>\n",
                           f.name, html_escape(f.caption));
   }
+  if (explorer)
+    html << "<section id='explorer-embed'>\n<h2>Other spins and bodies</h2>\n<p>The explorer answers them live, from this "
+            "report's body and motion: change the spin (rad/s or rpm), the tilt, the damping, the body or its parts, or drop "
+            "an STL, OBJ or PLY file; the answer, every model's verdict, the Lyapunov verdict, the motion in 3D and a "
+            "stability map over two keys of your choice are computed in the page by heavytop's own core in WebAssembly "
+            "(nothing installed, nothing sent). <a href='explore.html'>Open the explorer</a> (explore.html, in this folder) "
+            "or <button type='button' id='explorer-open'>open it here</button>.</p>\n"
+            "<iframe id='explorer-frame' title='heavytop explorer' hidden></iframe>\n"
+            "<script>document.getElementById('explorer-open').addEventListener('click', function () {\n"
+            "  var f = document.getElementById('explorer-frame'); if (!f.src) f.src = 'explore.html'; f.hidden = false;\n"
+            "  this.disabled = true; f.scrollIntoView();\n});</script>\n</section>\n";
   html << "<h2>Figures (for print)</h2>\n";
   for (const Figure& f : figures)
     html << fmt::format("<figure><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "
@@ -584,6 +623,8 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
           "<li><a href='comparison.json'>comparison.json</a>, <a href='comparison.csv'>comparison.csv</a>: as "
           "<code>heavytop compare</code></li><li><a href='trajectories.csv'>trajectories.csv</a>: theta, phi of every "
           "model (rad) against t (s)</li><li><a href='stability-map.csv'>stability-map.csv</a>: the map's verdicts</li>"
+       << (explorer ? "<li><a href='explore.html'>explore.html</a>: the explorer, starting at this body and motion (as "
+                      "<code>heavytop explore</code> writes it)</li>" : "")
        << (assets.empty() ? "" : "<li><a href='report-data.js'>report-data.js</a>: what the interactive view draws "
                                  "(decimated for display, six digits), with the spin angle psi of the nonlinear body</li>")
        << "</ul>\n"
@@ -603,6 +644,69 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
       });
     }
   for (const auto& [name, content] : data) write_output((fs::path(dir) / name).string(), content);
+}
+
+namespace {
+
+// Where the explorer page may be: $HEAVYTOP_EXPLORER_PAGE when set (and nowhere else), else beside
+// the program (the build tree: build/heavytop and build/web/), where this library's build made it
+// (for the Python module, so that its reports are the command's), where it is installed.
+std::optional<fs::path> find_explorer_page() {
+  std::vector<fs::path> candidates;
+  std::error_code ec;
+  if (const char* given = std::getenv("HEAVYTOP_EXPLORER_PAGE"))  // only there (a test: "" or a missing file)
+    return given[0] && fs::is_regular_file(given, ec) ? std::optional<fs::path>(given) : std::nullopt;
+  if (const fs::path self = fs::read_symlink("/proc/self/exe", ec); !ec)
+    candidates = {self.parent_path() / "web" / "heavytop-explore.html",
+                  self.parent_path().parent_path() / "share" / "heavytop" / "heavytop-explore.html"};
+#if defined(HEAVYTOP_EXPLORER_PAGE)
+  candidates.emplace_back(HEAVYTOP_EXPLORER_PAGE);
+#endif
+#if defined(HEAVYTOP_EXPLORER_INSTALLED)
+  candidates.emplace_back(HEAVYTOP_EXPLORER_INSTALLED);
+#endif
+  for (const fs::path& candidate : candidates)
+    if (fs::is_regular_file(candidate, ec)) return candidate;
+  return std::nullopt;
+}
+
+// The page's starting inputs, as its window.HEAVYTOP_INITIAL (web/explore.js): the
+// configuration's sections as a JavaScript object.
+std::string initial_json(const Body& b, const InitialState& s) {
+  using io::number;
+  return fmt::format(
+      "{{\"body\": {{\"A\": {}, \"B\": {}, \"C\": {}, \"mass\": {}, \"gravity\": {}, \"length\": {}}}, "
+      "\"motion\": {{\"spin\": {}, \"theta0\": {}, \"phi0\": {}, \"theta_rate0\": {}, \"phi_rate0\": {}}}, "
+      "\"damping\": {{\"transverse\": {}, \"axial\": {}, \"friction\": {}}}}}",
+      number(b.A), number(b.B), number(b.C), number(b.mass), number(b.gravity), number(b.length), number(s.spin),
+      number(s.theta0), number(s.phi0), number(s.theta_rate0), number(s.phi_rate0), number(b.damping.transverse),
+      number(b.damping.axial), number(b.damping.friction));
+}
+
+}  // namespace
+
+std::optional<std::string> explorer_page(const Body& body, const InitialState& state, bool shared_view) {
+  const auto page = find_explorer_page();
+  if (!page) return std::nullopt;
+  std::ifstream in(*page, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string html = text.str();
+  const std::string mark = "/*HEAVYTOP_INITIAL*/null";
+  const auto at = html.find(mark);
+  if (!in || at == std::string::npos) throw io::Failure(fmt::format("explore: '{}' is not the explorer page", page->string()));
+  html.replace(at, mark.size(), initial_json(body, state));
+  if (shared_view) {  // web/assemble.cjs puts the view's script between these marks, in a <script> of its own
+    const std::string begin = "<script>/*HEAVYTOP_VIEW_BEGIN*/", end = "/*HEAVYTOP_VIEW_END*/</script>";
+    const auto from = html.find(begin), to = html.find(end);
+    if (from != std::string::npos && to != std::string::npos && to > from)
+      html.replace(from, to + end.size() - from, "<script src='heavytop-report.js'></script>");
+  }
+  return html;
+}
+
+std::string view_data(const Body& body, const Trajectory& nonlinear, const std::vector<DrawnPart>& parts) {
+  return view_json(body, nonlinear, parts).dump();
 }
 
 }  // namespace heavytop::report

@@ -1,7 +1,9 @@
 // The report page's interactive parts: the top in 3D (three.js), the interactive plots
 // (uPlot) and the clickable stability explorer. Bundled by esbuild into one classic script
 // (heavytop-report.js) because pages opened from file:// may not import ES modules; its data
-// come from report-data.js (window.HEAVYTOP_REPORT), written by heavytop beside it.
+// come from report-data.js (window.HEAVYTOP_REPORT), written by heavytop beside it. The
+// explorer page (web/explore.js) inlines this same bundle and draws its own runs with the 3D
+// view: window.heavytopView3D.show(data) with data from the core's report::view_data().
 // Every number shown here was computed by heavytop (report/src/report.cpp); this file only
 // draws them: the attitude is composed from the report's theta, phi, psi as SPEC section 2
 // defines it, R = R_eta(theta) R_xi(phi) Rz(psi).
@@ -19,7 +21,6 @@ import { mergeGeometries } from "three/examples/jsm/utils/BufferGeometryUtils.js
 import uPlot from "uplot";
 import uPlotCss from "uplot/dist/uPlot.min.css";
 
-const D = window.HEAVYTOP_REPORT;
 const $ = (id) => document.getElementById(id);
 
 // One colour per model, as the static figures draw them (report/src/figures.cpp).
@@ -263,17 +264,26 @@ function exaggerateAxis(k) {
   return k.set(k.x * s, k.y * s, Math.cos(drawn));
 }
 
-function buildView() {
+let keptRenderer = null, keptSize = "";
+// The 3D view of `D` (the report's data, or report::view_data()'s) in the page's #scene with its
+// controls (#play, #speed, #scrub, #exaggerate...). Returns its state; state.dispose() removes
+// it (its listeners, its animation, its geometries; the renderer stays), so that another can be
+// built in its place.
+function buildView(D) {
   const host = $("scene");
+  const lifetime = new AbortController(), signal = lifetime.signal;
   const t = D.t, n = t.length, T = t[n - 1];
   const body = buildBody(D);
   const { size, zTrace } = body;
 
-  const renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  // One renderer (one WebGL context, its compiled shaders) for every view built in this page: a
+  // new context for each of the explorer's runs took 0.3 to 1 s under SwiftShader.
+  const renderer = keptRenderer || new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  keptRenderer = renderer;
   renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
   renderer.setClearColor(0xf4f6f8);
   renderer.autoClear = false;
-  host.appendChild(renderer.domElement);
+  if (renderer.domElement.parentElement !== host) host.appendChild(renderer.domElement);
   renderer.domElement.id = "scene-canvas";
 
   const scene = new Scene();
@@ -491,18 +501,22 @@ function buildView() {
     } else spinNote.hidden = true;
   }
   describeSpeed();
-  speedInput.addEventListener("input", () => { state.speed = speeds[+speedInput.value]; describeSpeed(); });
+  speedInput.addEventListener("input", () => { state.speed = speeds[+speedInput.value]; describeSpeed(); }, { signal });
+  playButton.textContent = "Pause";
   playButton.addEventListener("click", () => {
     state.playing = !state.playing;
     if (state.playing && state.time >= T) state.time = 0;
     playButton.textContent = state.playing ? "Pause" : "Play";
-  });
-  scrub.addEventListener("input", () => { state.time = (T * scrub.value) / scrub.max; draw(); });
+  }, { signal });
+  scrub.addEventListener("input", () => { state.time = (T * scrub.value) / scrub.max; draw(); }, { signal });
   for (const o of overlays) {
     const box = $(`overlay-${o.model.name}`);
-    if (box) box.addEventListener("change", () => { o.group.visible = box.checked; draw(); });
+    if (box) box.addEventListener("change", () => { o.group.visible = box.checked; draw(); }, { signal });
   }
   const exaggerateBox = $("exaggerate");
+  const oldWhy = $("exaggerate-off");
+  if (oldWhy) oldWhy.remove();
+  if (exaggerateBox) { exaggerateBox.disabled = false; exaggerateBox.checked = false; }
   function setExaggerated(on) {
     state.exaggerated = on;
     for (const line of traces) line.geometry.setAttribute("position", line.userData.attributes[on ? 1 : 0]);
@@ -517,7 +531,7 @@ function buildView() {
     why.textContent = ` Off for this body: its axis is never nearer the vertical than ${fmt((leastTilt * 180) / Math.PI, 3)} degrees, ` +
       `so ten times its tilt would only draw it upside down.`;
     exaggerateBox.parentElement.appendChild(why);
-  } else if (exaggerateBox) exaggerateBox.addEventListener("change", () => setExaggerated(exaggerateBox.checked));
+  } else if (exaggerateBox) exaggerateBox.addEventListener("change", () => setExaggerated(exaggerateBox.checked), { signal });
   placeInset();
   Object.defineProperty(state, "scene", { value: scene, enumerable: false });  // (the test looks for the parts in it)
   window.heavytopView = state;  // for a reader's console (and the browser test's logs)
@@ -556,11 +570,13 @@ function buildView() {
 
   function resize() {
     const w = host.clientWidth, h = Math.round(w * 0.56);
-    renderer.setSize(w, h);
+    // Only when it changed: a resize reallocates the drawing buffer (0.7 s under SwiftShader).
+    if (keptSize !== `${w}x${h}`) renderer.setSize(w, h);
+    keptSize = `${w}x${h}`;
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
   }
-  window.addEventListener("resize", () => { resize(); draw(); });
+  window.addEventListener("resize", () => { resize(); draw(); }, { signal });
   resize();
   fitCamera();
   controls.update();
@@ -607,7 +623,15 @@ function buildView() {
     return out;
   };
 
-  let last = null;
+  let last = null, pending = 0;
+  state.dispose = () => {
+    lifetime.abort();
+    cancelAnimationFrame(pending);
+    controls.dispose();
+    scene.traverse((o) => { if (o.geometry) o.geometry.dispose(); if (o.material) o.material.dispose(); });
+    renderer.renderLists.dispose();  // the renderer and its canvas stay for the next view
+    if (window.heavytopView === state) window.heavytopView = undefined;
+  };
   function frame(now) {
     if (last !== null && state.playing) {
       state.time += (state.speed * Math.min(now - last, 100)) / 1000;
@@ -616,14 +640,15 @@ function buildView() {
     last = now;
     draw();
     state.frames++;
-    requestAnimationFrame(frame);
+    pending = requestAnimationFrame(frame);
   }
   controls.addEventListener("change", draw);
-  requestAnimationFrame(frame);
+  pending = requestAnimationFrame(frame);
+  return state;
 }
 
 // ---- interactive plots -----------------------------------------------------------------------------
-function buildPlots() {
+function buildPlots(D) {
   const style = document.createElement("style");
   style.textContent = uPlotCss;
   document.head.appendChild(style);
@@ -689,7 +714,7 @@ function buildPlots() {
 }
 
 // ---- the stability explorer: the map's grid and the diagram's nonlinear runs, clickable ------------
-function buildExplorer() {
+function buildExplorer(D) {
   const canvas = $("explorer"), info = $("explorer-info"), M = D.map;
   const nx = M.x.count, ny = M.y.count;
   const pad = { l: 70, r: 20, t: 20, b: 50 };
@@ -771,7 +796,16 @@ function buildExplorer() {
         `(tilt ${best[2] ? "stayed within" : "passed"} ${D.diagram.max_tilt} rad within ${fmt(D.diagram.horizon, 3)} s).</p>`;
     if (Math.abs(X(D.body_point[0]) - px) < 12 && Math.abs(Y(D.body_point[1]) - py) < 12)
       html += `<p>This is the body of this report: its motion is the one in the 3D view and the plots above.</p>`;
-    else
+    else if (D.explorer) {
+      // The explorer beside the report computes it: this point's body and spin, the report's start.
+      const body = { ...D.body };
+      if (M.x.key === "B/A") body.B = xv * D.body.A;
+      const config = { body, motion: { spin: yv, ...D.start } };
+      html += `<p>The report computed no motion for this point: <a id='explorer-point' href='explore.html#config=` +
+        `${encodeURIComponent(JSON.stringify(config))}'>see it in the explorer</a> (computed there, in the page), or run ` +
+        `<code>heavytop simulate --model nonlinear ${D.cli_body} ${M.x.key === "B/A" ? `--B ${fmt(xv * D.body.A, 6)}` : ""} ` +
+        `--spin ${fmt(yv, 6)} ${D.cli_start}</code></p>`;
+    } else
       html += `<p>The report computed no motion for this point; to see it: <code>heavytop simulate --model nonlinear ` +
         `${D.cli_body} ${M.x.key === "B/A" ? `--B ${fmt(xv * D.body.A, 6)}` : ""} --spin ${fmt(yv, 6)} ${D.cli_start}</code></p>`;
     info.innerHTML = html;
@@ -779,9 +813,10 @@ function buildExplorer() {
 }
 
 function start() {
+  const D = window.HEAVYTOP_REPORT;
   for (const [name, build] of [["3D view", buildView], ["plots", buildPlots], ["stability explorer", buildExplorer]]) {
     try {
-      build();
+      build(D);
     } catch (err) {
       // Say so on the page; the static figures below stay.
       const p = document.createElement("p");
@@ -792,5 +827,8 @@ function start() {
     }
   }
 }
-if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
-else start();
+window.heavytopView3D = Object.freeze({ show: buildView });
+if (window.HEAVYTOP_REPORT) {
+  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
+  else start();
+}

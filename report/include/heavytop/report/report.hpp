@@ -59,4 +59,22 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
                   const std::optional<ReportMap>& map = std::nullopt, const std::string& source = "",
                   const std::vector<DrawnPart>& parts = {});
 
+/// What the report's 3D view draws, as the JSON text of an object (the part of report-data.js's
+/// window.HEAVYTOP_REPORT that report/web/src/main.js's view reads): `body` (its moments, kg m^2,
+/// mass kg, length m, gravity m/s^2), `t` (s) and `nonlinear` {theta, phi, psi} (rad) at the
+/// samples shown of the run `nonlinear` of `body` (columns of simulate_nonlinear, with
+/// axial_momentum), `shape` (the equivalent ellipsoid, m), `parts` (as write_report draws them;
+/// a mesh's file is read), `playback` and no `models`. The explorer page (web/) draws its own
+/// runs with it. Throws InvalidInput ("trajectory") without the axial_momentum column.
+std::string view_data(const Body& body, const Trajectory& nonlinear, const std::vector<DrawnPart>& parts = {});
+
+/// The explorer page (SPEC section 15; built by web/, the CMake target heavytop_web), its inputs
+/// starting at `body` and `state`: the file `heavytop explore` writes and every report carries as
+/// explore.html. Looked for beside the running program (build/web/), where the build made it and
+/// where it is installed (share/heavytop/); nullopt when this heavytop was built without it.
+/// `shared_view`: the page loads the 3D view's script from heavytop-report.js beside it (a
+/// report's copy) instead of carrying its own. Throws io::Failure if a file found there is not
+/// the page.
+std::optional<std::string> explorer_page(const Body& body, const InitialState& state, bool shared_view = false);
+
 }  // namespace heavytop::report
