@@ -95,6 +95,11 @@ void refuse_general_keys(const Body& body);
 /// naming first_general_key(body).
 void refuse_general_in(const Body& body, const std::string& command);
 
+/// What `heavytop precession` (and Python's precession()) warns of a damped body.
+inline constexpr const char* kPrecessionIgnoresDamping =
+    "precession is the conservative body's: its damping, friction and motor are ignored (a damped body's steady "
+    "motions decay; `heavytop lifetime` follows them)";
+
 /// Why `heavytop explore` (and Python's explore()) has no page to write and how to build it:
 /// the rule of InvalidInput("explore", ...).
 inline constexpr const char* kExplorerPageMissing =
