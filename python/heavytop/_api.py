@@ -258,8 +258,8 @@ def derive(method: DeriveMethod = "euler-moving", sequence: Sequence = "phi-thet
         order      1 | 2: order of smallness kept in the kinematics
 
     Returns a Derivation: .M, .G, .K (2x2 tuples of strings), .characteristic_polynomial,
-    .stability_condition; every entry a string in A, B, C, m, g, R, omega0 (and lambda), `^`
-    for powers (sympy reads them after ^ -> **). As a Mapping and by .to_dict() it is
+    .stability_condition; every entry a string in A, B, C (kg m^2), m (kg), g (m/s^2), R (m),
+    omega0 (rad/s) (and lambda, 1/s), `^` for powers (sympy reads them after ^ -> **). As a Mapping and by .to_dict() it is
     json.loads of `heavytop derive --method M --sequence S --order N --format json`. Bad input
     raises InvalidInput (a ValueError): "order: must be 1 or 2"; built without GiNaC
     (HAS_DERIVE false), RuntimeError.
@@ -269,14 +269,15 @@ def derive(method: DeriveMethod = "euler-moving", sequence: Sequence = "phi-thet
 
 def derive_rotations(order: Literal[1, 2] = 1) -> Rotations:
     """The paper's small-rotation matrices to `order` (1 or 2): .A1, .A2, .A3, .A1A2, .A2A1,
-    .commutator (= A1A2 - A2A1), 3x3 tuples of strings in phi, theta, psi (rows i, j, k in terms
-    of l, m, n); as a Mapping, json.loads of `heavytop derive --rotations --format json`.
+    .commutator (= A1A2 - A2A1), 3x3 tuples of strings in the small angles phi, theta, psi (rad;
+    rows i, j, k in terms of l, m, n, dimensionless); as a Mapping, json.loads of `heavytop derive --rotations --format json`.
     """
     return Rotations.from_json(_core.derive_rotations(order))
 
 
 def derive_check(order: Optional[Literal[1, 2]] = None) -> DerivationCheck:
-    """Every route and rotation sequence at `order` (1, 2, or None for both): .rows (each with
+    """Every route and rotation sequence at `order` (1, 2, or None for both), the matrices in the
+    symbols A, B, C (kg m^2), m (kg), g (m/s^2), R (m), omega0 (rad/s): .rows (each with
     .method, .sequence, .order, .M, .G, .K, .model, .expected, .as_expected, .why) and
     .all_as_expected; as a Mapping, json.loads of `heavytop derive --check --format json`.
     """

@@ -32,7 +32,7 @@ def test_every_function_documents_units():
 
 
 # A unit as the docstrings write them (SI; rpm for spins given in rpm).
-UNIT = r"(rad/s|\brad\b|kg m\^2|\bkg\b|m/s\^2|N m s|N m|\bs\b|\bm\b|\brpm\b|\bJ\b|SI units)"
+UNIT = r"(rad/s|\brad\b|kg m\^2|\bkg\b|m/s\^2|N m\b|\brpm\b|\bJ\b|SI units|\(s\)|\bs, |\(m\)|\bm, )"
 
 
 def public_functions():
