@@ -512,27 +512,27 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
 
 
 def show(body: "Body | Configuration | Trajectory", folder: "os.PathLike[str] | str | None" = None, *,
-         height: Optional[int] = None, **options: Any) -> "ReportView | MotionView":
+         height: int = 720, **options: Any) -> "ReportView | MotionView":
     """Shows a body's report, or one trajectory's motion, inline in a notebook (offline).
 
     show(body or Configuration, folder=None, **options): the report (report(), the same keywords:
     spin rad/s, theta0 rad, ..., t_end s, map), a ReportView whose HTML is the report's page with
     its three.js view of the body moving in 3D, its plots and figures inlined (a few MB; in an
-    iframe `height` pixels tall, default 720, scrolled to the 3D view). The folder is written to `folder`, or
+    iframe `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or
     to a new temporary folder; the title names the Configuration's file, else "A body given in
     Python" (title= to choose).
 
     show(trajectory): that motion (simulate()'s Trajectory, any model) in the report's 3D view,
-    a MotionView (trajectory.view(height), default 520 pixels; the trajectory's own HTML shows it too).
+    a MotionView (trajectory.view(height); the trajectory's own HTML shows it too).
     """
     if isinstance(body, Trajectory):
         if folder is not None or options:
             raise _invalid("show", "a trajectory takes only height=")
-        return body.view(520 if height is None else height)
+        return body.view(height)
     import tempfile
     folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
     report(body, folder, **options)
-    return ReportView(folder, 720 if height is None else height)
+    return ReportView(folder, height)
 
 
 def _explorer_page_file() -> str:

@@ -810,7 +810,7 @@ class Trajectory(_Columns):
         """The Body simulated (None for a Trajectory made by hand)."""
         return self._body
 
-    def view(self, height: int = 520) -> "MotionView":
+    def view(self, height: int = 720) -> "MotionView":
         """This motion in 3D, inline in a notebook: the report's own 3D view (three.js, from the
         page script heavytop's build embeds; works offline), the body drawn as the uniform
         ellipsoid of its mass and moments turning at its spin angle, the axis's tip path traced,
@@ -886,7 +886,7 @@ class MotionView:
 
     __slots__ = ("html", "height")
 
-    def __init__(self, trajectory: "Trajectory", height: int = 520) -> None:
+    def __init__(self, trajectory: "Trajectory", height: int = 720) -> None:
         from . import _core
         self.height = int(height)
         body = trajectory.body
@@ -915,7 +915,13 @@ class MotionView:
             # The page script also draws the report's plots and map; this page has neither.
             "<div id='interactive-plots' hidden><div id='plots'></div></div>"
             "<script>" + data.replace("</script", "<\\/script") + "</script>"
-            "<script>" + script.decode("utf-8").replace("</script", "<\\/script") + "</script></body></html>")
+            # The page script sizes its view once, from the scene's width when it runs: in a
+            # notebook's iframe that is 0 until the frame is laid out, so it runs only then.
+            "<script type='text/plain' id='page-script'>" + script.decode("utf-8").replace("</script", "<\\/script")
+            + "</script><script>(function start() { const scene = document.getElementById('scene');"
+            " if (!(scene.clientWidth > 0)) { requestAnimationFrame(start); return; }"
+            " const s = document.createElement('script'); s.textContent = document.getElementById('page-script').textContent;"
+            " document.body.appendChild(s); })();</script></body></html>")
 
     def save(self, path: str) -> str:
         """Writes the self-contained page to `path` (one file, opens offline); returns path."""

@@ -30,7 +30,7 @@ def test_a_trajectory_shows_the_report_s_3d_view(tmp_path):
     script = needs_page_script()
     motion = heavytop.simulate(TOP, "nonlinear", spin=200.0, theta0=0.05, t_end=0.5, samples=501)
     view = heavytop.show(motion)
-    assert isinstance(view, heavytop.MotionView) and view.height == 520
+    assert isinstance(view, heavytop.MotionView) and view.height == 720
     page = view.html
     # The report's own bundle, inlined whole: the same bytes `heavytop report` writes.
     report = tmp_path / "report"
@@ -38,6 +38,7 @@ def test_a_trajectory_shows_the_report_s_3d_view(tmp_path):
     bundle = (report / "heavytop-report.js").read_bytes()
     assert bundle == script
     assert bundle.decode().replace("</script", "<\\/script") in page
+    assert "<script type='text/plain' id='page-script'>" in page  # run once the frame has a width
     assert "http://" not in page.split("<script>")[0] and "src=" not in page  # nothing fetched
     for element in ("scene", "play", "speed", "scrub", "time", "inset-scale", "spin-note", "exaggerate"):
         assert f"id='{element}'" in page, element
