@@ -477,7 +477,7 @@ class Comparison(JsonResult):
         axes[1].bar(x + width / 2, pre, width, label="precession rate")
         if np.any(np.array(nut + pre) > 0):
             axes[1].set_yscale("log")
-        axes[1].set_ylabel("relative error (1)")
+        axes[1].set_ylabel("relative error (dimensionless)")
         axes[1].legend(fontsize="small")
         for ax in axes:
             ax.set_xticks(x, names)
