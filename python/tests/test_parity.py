@@ -240,7 +240,6 @@ def test_fit_decay_damped(tmp_path):
     path = config(tmp_path, DAMPED)
     mine = heavytop.fit_decay(run.t, spin, DAMPED)
     assert mine == cli_json("fit-decay", "--config", path, "--data", str(data))
-    assert mine == cli_json("fit-decay", "--config", path, "--data", str(data))
     np.testing.assert_allclose([mine.axial.value, mine.friction.value], [DAMPED.axial_damping, DAMPED.friction], rtol=1e-6)
     known = heavytop.fit_decay(run.t, spin, DAMPED, spin0=150.0)
     assert known == cli_json("fit-decay", "--config", path, "--data", str(data), "--known-spin0", "150")
