@@ -902,6 +902,9 @@ class MotionView:
                  f"turning at its spin angle (the red sector on its rim). Black: the fixed point O, the vertical "
                  f"(dashed), the path of the axis's tip. Drag to turn, scroll to zoom. Inset: straight down on the "
                  f"tip, <span id='inset-scale'></span> from centre to edge.")
+        if body.general:  # SPEC section 11: drawn on its axis; its spin angle from (I w).e3 / C
+            words += (" This general body's centre-of-mass offset and products of inertia are not drawn, and its "
+                      "spin angle is taken from (I w).e3 / C, which they change slightly.")
         self.html = (
             "<!doctype html><html><head><meta charset='utf-8'><style>" + _MOTION_VIEW_STYLE + "</style></head><body>"
             "<section id='interactive'><p>" + words + "</p><div id='scene'></div>"
