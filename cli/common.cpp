@@ -17,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "heavytop/io/formats.hpp"
 #include "heavytop/units.hpp"
 
 extern char** environ;
@@ -219,18 +220,13 @@ void Inputs::resolve(bool allow_general) {
                                               e.rule(), keys));
     }
     assembly_ = io::assemble_moments(body, config_.general);
-    for (const auto& [key, value] : config_.general)
-      if (value != 0.0 && !allow_general)
-        throw InvalidInput(key, fmt::format("is {:g}: the general body (SPEC section 11: the centre of mass off "
-                                            "the z axis, products of inertia) is integrated by `simulate --model "
-                                            "nonlinear` only (`heavytop body` reports it)",
-                                            value));
     const auto given = [&](const char* key) {
       const auto it = config_.general.find(key);
       return it == config_.general.end() ? 0.0 : it->second;
     };
     body.general = {given("body.Ixy"), given("body.Ixz"), given("body.Iyz"), given("body.offset_x"),
                     given("body.offset_y")};
+    if (!allow_general) io::refuse_general_keys(body);
   }
   body.damping = damping;
   validate(body);
@@ -254,10 +250,7 @@ void Inputs::refuse_general(const std::string& what) const {
   if (!is_general(body_)) return;
   // A body of parts: body_of() names the part and says by how much it is general.
   if (!config_.parts.empty()) body_of(assembly_.assembly, body_.gravity, assembly_.names);
-  const char* key = first_general_key(body_);
-  throw InvalidInput(key, fmt::format("is nonzero: the general body (SPEC section 11: the centre of mass off the z "
-                                      "axis, products of inertia) is integrated by `simulate --model nonlinear` "
-                                      "only, not by {}", what));
+  io::refuse_general_in(body_, what);
 }
 
 namespace {

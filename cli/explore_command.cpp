@@ -10,13 +10,6 @@
 #include "heavytop/report/report.hpp"
 
 namespace heavytop::cli {
-namespace {
-
-constexpr const char* kHowToBuild =
-    "this heavytop was built without the explorer page, which needs Emscripten: run ./scripts/build.sh --web "
-    "(or configure with -DHEAVYTOP_BUILD_WEB=ON and build the target heavytop_web), then run this again";
-
-}  // namespace
 
 Action add_explore_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -28,7 +21,7 @@ Action add_explore_command(CLI::App& app) {
     if (inputs->output().empty() || inputs->output() == "-")
       throw InvalidInput("--output", "give the page's file, e.g. --output explore.html");
     const auto page = report::explorer_page(inputs->body(), inputs->state());
-    if (!page) throw InvalidInput("explore", kHowToBuild);
+    if (!page) throw InvalidInput("explore", io::kExplorerPageMissing);
     write_output(inputs->output(), *page);
   };
 }

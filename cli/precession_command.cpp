@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/io/body_formats.hpp"
+#include "heavytop/io/formats.hpp"
 #include "heavytop/precession.hpp"
 
 namespace heavytop::cli {
@@ -24,8 +25,7 @@ Action add_precession_command(CLI::App& app) {
     const Body& body = inputs->body();
     const double spin = inputs->state().spin;
     if (!body.damping.conservative())
-      std::cerr << "heavytop: warning: precession is the conservative body's: its damping, friction and motor are "
-                   "ignored (a damped body's steady motions decay; `heavytop lifetime` follows them)\n";
+      std::cerr << "heavytop: warning: " << io::kPrecessionIgnoresDamping << "\n";
     std::optional<PrecessionAnalysis> steady;
     if (is_symmetric(body)) steady = analyse_precession(body, *tilt, spin);
     const auto rotations = permanent_rotations(body, *tilt);

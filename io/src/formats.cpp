@@ -479,4 +479,38 @@ std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin
   return fmt::to_string(out);
 }
 
+void refuse_general_keys(const Body& body) {
+  const GeneralInertia& g = body.general;
+  for (const auto& [key, value] : {std::pair{"body.Ixy", g.Ixy}, std::pair{"body.Ixz", g.Ixz}, std::pair{"body.Iyz", g.Iyz},
+                                   std::pair{"body.offset_x", g.offset_x}, std::pair{"body.offset_y", g.offset_y}})
+    if (value != 0.0)
+      throw InvalidInput(key, fmt::format("is {:g}: the general body (SPEC section 11: the centre of mass off the z axis, "
+                                          "products of inertia) is integrated by `simulate --model nonlinear` only "
+                                          "(`heavytop body` reports it)",
+                                          value));
+}
+
+void refuse_general_in(const Body& body, const std::string& command) {
+  if (const char* key = first_general_key(body))
+    throw InvalidInput(key, fmt::format("is nonzero: the general body (SPEC section 11: the centre of mass off the z "
+                                        "axis, products of inertia) is integrated by `simulate --model nonlinear` "
+                                        "only, not by {}",
+                                        command));
+}
+
+std::optional<std::string> explorer_page(std::string built_page, const Body& b, const InitialState& s) {
+  const std::string mark = "/*HEAVYTOP_INITIAL*/null";
+  const auto at = built_page.find(mark);
+  if (at == std::string::npos) return std::nullopt;
+  built_page.replace(
+      at, mark.size(),
+      fmt::format("{{\"body\": {{\"A\": {}, \"B\": {}, \"C\": {}, \"mass\": {}, \"gravity\": {}, \"length\": {}}}, "
+                  "\"motion\": {{\"spin\": {}, \"theta0\": {}, \"phi0\": {}, \"theta_rate0\": {}, \"phi_rate0\": {}}}, "
+                  "\"damping\": {{\"transverse\": {}, \"axial\": {}, \"friction\": {}}}}}",
+                  number(b.A), number(b.B), number(b.C), number(b.mass), number(b.gravity), number(b.length),
+                  number(s.spin), number(s.theta0), number(s.phi0), number(s.theta_rate0), number(s.phi_rate0),
+                  number(b.damping.transverse), number(b.damping.axial), number(b.damping.friction)));
+  return built_page;
+}
+
 }  // namespace heavytop::io

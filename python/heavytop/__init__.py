@@ -26,25 +26,30 @@ heavytop.InvalidInput (a ValueError) with a one-line "<key>: <rule>", the key be
 keyword argument's name ("rtol: must be a finite number in [1e-15, 1]", "t_end: ...") or, for
 the body and the motion, the configuration file's key ("body.A", "motion.spin").
 
-Functions (each a command of the command line; help(heavytop.NAME) for its units):
+Functions, one a line (each a command of the command line, in brackets; help(heavytop.NAME) for
+its arguments and their units):
 
     stability(body, spin)        does it stay up: the answer, each model's verdict    [stability]
-    simulate(body, model)        one model's motion as NumPy arrays                   [simulate]
-    compare(body)                every model against the nonlinear body               [compare]
+    simulate(body, model)        one model's motion as NumPy arrays (s, rad, rad/s)   [simulate]
+    compare(body)                every model against the nonlinear body (rad, rad/s)  [compare]
     sweep(body, vary)            a stability map over a grid of parameters            [sweep]
     read_map(path)               a map `heavytop sweep --output` wrote                [sweep]
-    grid_values(start, stop, n)  the command line's START:STOP:COUNT grid            [--vary]
-    lifetime(body, spin=)        how long a damped top stays up                       [lifetime]
-    fit_decay(t, spin)           damping fitted to a measured spin decay              [fit-decay]
-    precession(body, tilt)       steady precessions at a tilt                         [precession]
-    body_from_parts(parts)       the Body that [[body.part]] tables make              [body]
-    body_report(parts)           the mass properties of parts                         [body]
+    grid_values(start, stop, n)  the command line's START:STOP:COUNT grid (SI units)  [--vary]
+    lifetime(body, spin=)        how long a damped top stays up (s)                   [lifetime]
+    fit_decay(t, spin)           damping (N m s, N m) fitted to a spin decay          [fit-decay]
+    precession(body, tilt)       steady precessions at a tilt (rad/s)                 [precession]
+    body_from_parts(parts)       the Body that [[body.part]] tables make (kg m^2, m)  [body]
+    body_report(parts or body)   the mass properties of parts or of a body            [body]
     load(path)                   a configuration file: body, motion, options          [--config]
     report(body, folder)         the report folder                                    [report]
-    show(body)                   the report inline in a notebook: the body in 3D      [report]
-    derive(), derive_rotations(), derive_check()   the symbolic derivations           [derive]
+    show(body or trajectory)     inline in a notebook: the report, or a motion in 3D  [report]
+    explore(body, path)          the explorer page: the core in WebAssembly, offline  [explore]
+    derive()                     the paper's linear model derived symbolically        [derive]
+    derive_rotations()           the small-rotation matrices, symbolically            [derive --rotations]
+    derive_check()               every route and rotation sequence checked            [derive --check]
     rpm(x)                       rad/s of x rpm                                       [--spin-rpm]
-    example_toy_top(), example_motion()            the built-in example
+    example_toy_top()            the built-in example's Body (kg m^2, kg, m)          [no --config]
+    example_motion()             the built-in example's start (rad/s, rad)            [no --config]
 
 In a notebook every result shows itself (the answer first), and trajectories, comparisons,
 maps and lifetimes have .to_dataframe() (pandas) and .plot() (matplotlib, returns the figure);
@@ -58,12 +63,12 @@ examples/notebooks/tour.ipynb is a tour.
 """
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
-                   load, precession, read_map, report, rpm, show, simulate, stability, sweep)
+                   explore, load, precession, read_map, report, rpm, show, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov, NormalForm,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
                       StabilityMap, Trajectory, Wander, Answer, BodyReport, Precession, SteadyPrecession,
-                      Configuration, ReportView)
+                      Configuration, ReportView, MotionView)
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
@@ -72,5 +77,5 @@ __all__ = [
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov", "NormalForm",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
-    "load", "report", "show", "ReportView", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
+    "load", "report", "show", "explore", "ReportView", "MotionView", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
 ]

@@ -15,10 +15,10 @@ from . import _core
 from ._core import Body
 from .results import (BodyReport, Comparison, Configuration, ReportView, DecayFit, Derivation, DerivationCheck, Lifetime,
                       Precession, Rotations, Stability, StabilityMap, Trajectory)
-from .results import SimulationSummary
+from .results import MotionView, SimulationSummary
 
 __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
-           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report", "show"]
+           "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report", "show", "explore"]
 
 ModelName = Literal["first-order", "body-fixed", "linearized", "nonlinear", "lagrange-exact"]
 LinearMethod = Literal["analytic", "numeric"]
@@ -29,7 +29,8 @@ Sequence = Literal["phi-theta", "theta-phi"]
 
 
 def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
-              phi_rate0: float = 0.0, horizon: float = 100.0, max_tilt: float = 1.0) -> Stability:
+              phi_rate0: float = 0.0, horizon: float = 100.0, max_tilt: float = 1.0,
+              lifetime_horizon: Optional[float] = None) -> Stability:
     """Linear stability of the first-order, body-fixed and linearized models at spin w0, the
     real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders.
 
@@ -42,6 +43,9 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
                      long (A = B: exact, from the Lagrange top's cubic); the answer's run when
                      the Lyapunov verdict does not prove it stable
         max_tilt     rad, in (0, pi]: the tilt past which the answer says it has fallen
+        lifetime_horizon
+                     s, > 0: a damped body's run (None: lifetime()'s, 10 times the time to the
+                     critical spin)                                   [--lifetime-horizon]
 
     The motion's defaults are those of a configuration file without [motion] (SPEC section
     4): every key 0, spin included; the command line uses the same rule as soon as a body is
@@ -72,7 +76,8 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
     Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".
     """
     data, words = _core.stability(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
-                                  phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt)
+                                  phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt,
+                                  lifetime_horizon=lifetime_horizon)
     return Stability.from_json(data, words)
 
 
@@ -145,7 +150,7 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float
         error = RuntimeError(summary.message)
         error.summary = summary  # type: ignore[attr-defined]
         raise error
-    return Trajectory(columns, summary)
+    return Trajectory(columns, summary, body, _spin(spin, spin_rpm))
 
 
 def compare(body: Body, *, spin: Optional[float] = None, spin_rpm: Optional[float] = None, theta0: float = 0.0,
@@ -253,8 +258,8 @@ def derive(method: DeriveMethod = "euler-moving", sequence: Sequence = "phi-thet
         order      1 | 2: order of smallness kept in the kinematics
 
     Returns a Derivation: .M, .G, .K (2x2 tuples of strings), .characteristic_polynomial,
-    .stability_condition; every entry a string in A, B, C, m, g, R, omega0 (and lambda), `^`
-    for powers (sympy reads them after ^ -> **). As a Mapping and by .to_dict() it is
+    .stability_condition; every entry a string in A, B, C (kg m^2), m (kg), g (m/s^2), R (m),
+    omega0 (rad/s) (and lambda, 1/s), `^` for powers (sympy reads them after ^ -> **). As a Mapping and by .to_dict() it is
     json.loads of `heavytop derive --method M --sequence S --order N --format json`. Bad input
     raises InvalidInput (a ValueError): "order: must be 1 or 2"; built without GiNaC
     (HAS_DERIVE false), RuntimeError.
@@ -264,14 +269,15 @@ def derive(method: DeriveMethod = "euler-moving", sequence: Sequence = "phi-thet
 
 def derive_rotations(order: Literal[1, 2] = 1) -> Rotations:
     """The paper's small-rotation matrices to `order` (1 or 2): .A1, .A2, .A3, .A1A2, .A2A1,
-    .commutator (= A1A2 - A2A1), 3x3 tuples of strings in phi, theta, psi (rows i, j, k in terms
-    of l, m, n); as a Mapping, json.loads of `heavytop derive --rotations --format json`.
+    .commutator (= A1A2 - A2A1), 3x3 tuples of strings in the small angles phi, theta, psi (rad;
+    rows i, j, k in terms of l, m, n, dimensionless); as a Mapping, json.loads of `heavytop derive --rotations --format json`.
     """
     return Rotations.from_json(_core.derive_rotations(order))
 
 
 def derive_check(order: Optional[Literal[1, 2]] = None) -> DerivationCheck:
-    """Every route and rotation sequence at `order` (1, 2, or None for both): .rows (each with
+    """Every route and rotation sequence at `order` (1, 2, or None for both), the matrices in the
+    symbols A, B, C (kg m^2), m (kg), g (m/s^2), R (m), omega0 (rad/s): .rows (each with
     .method, .sequence, .order, .M, .G, .K, .model, .expected, .as_expected, .why) and
     .all_as_expected; as a Mapping, json.loads of `heavytop derive --check --format json`.
     """
@@ -362,12 +368,21 @@ def body_from_parts(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.
     return body
 
 
-def body_report(parts: SequenceOf[Mapping[str, Any]], *, gravity: float = 9.81, folder: str = ".") -> BodyReport:
+def body_report(parts: "SequenceOf[Mapping[str, Any]] | Body", *, gravity: float = 9.81,
+                folder: str = ".") -> BodyReport:
     """The mass properties these parts make, a BodyReport (.A, .B, .C kg m^2, .mass kg, .length m,
     .general) whose to_dict() is json.loads of `heavytop body --format json` (see body_from_parts): {"A", "B",
-    "C" (kg m^2 about O), "mass" (kg), "length" (m), "gravity", "products": {"xy", "xz", "yz"} (kg m^2),
-    "offset": {"x", "y"} (m), "principal_axis_tilt" (rad), "general" (bool), "parts": [{"name",
-    "mass", "centre_of_mass", "inertia"}]}. A general body is reported, not refused."""
+    "C" (kg m^2 about O), "mass" (kg), "length" (m), "gravity" (m/s^2), "products": {"xy", "xz", "yz"}
+    (kg m^2), "offset": {"x", "y"} (m), "principal_axis_tilt" (rad), "general" (bool), "parts": [{"name",
+    "mass", "centre_of_mass", "inertia"}]}. A general body is reported, not refused.
+
+        parts    a list of [[body.part]] dicts (body_from_parts), or a Body given by its keys (its
+                 offsets and products of inertia too: `heavytop body` of a [body] section)
+        gravity  m/s^2, for parts (a Body keeps its own)
+        folder   where a relative mesh path starts (default: the working folder)
+    """
+    if isinstance(parts, Body):
+        return BodyReport.from_json(_core.body_json(parts))
     return BodyReport.from_json(_assemble(parts, gravity, folder, True)[0])
 
 
@@ -496,15 +511,72 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
     return os.path.join(folder, "report.html")
 
 
-def show(body: "Body | Configuration", folder: "os.PathLike[str] | str | None" = None, *, height: int = 720,
-         **options: Any) -> ReportView:
-    """The report (report(), the same keywords: spin rad/s, theta0 rad, ..., t_end s, map) shown
-    inline in a notebook: a ReportView whose HTML is the report's page with its three.js view of
-    the body moving in 3D, its plots and figures inlined (a few MB; works offline, in an iframe
-    `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or to a new
-    temporary folder; the title names the Configuration's file, else "A body given in Python"
-    (title= to choose)."""
+def show(body: "Body | Configuration | Trajectory", folder: "os.PathLike[str] | str | None" = None, *,
+         height: int = 720, **options: Any) -> "ReportView | MotionView":
+    """Shows a body's report, or one trajectory's motion, inline in a notebook (offline).
+
+    show(body or Configuration, folder=None, **options): the report (report(), the same keywords:
+    spin rad/s, theta0 rad, ..., t_end s, map), a ReportView whose HTML is the report's page with
+    its three.js view of the body moving in 3D, its plots and figures inlined (a few MB; in an
+    iframe `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or
+    to a new temporary folder; the title names the Configuration's file, else "A body given in
+    Python" (title= to choose).
+
+    show(trajectory): that motion (simulate()'s Trajectory, any model) in the report's 3D view,
+    a MotionView (trajectory.view(height); the trajectory's own HTML shows it too).
+    """
+    if isinstance(body, Trajectory):
+        if folder is not None or options:
+            raise _invalid("show", "a trajectory takes only height=")
+        return body.view(height)
     import tempfile
     folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
     report(body, folder, **options)
     return ReportView(folder, height)
+
+
+def _explorer_page_file() -> str:
+    # Where `heavytop explore` finds it: beside an installed package, in this build tree (web/),
+    # or where `cmake --install` puts it (PREFIX/share/heavytop); "" when it was not built.
+    import sys
+    here = os.path.dirname(os.path.abspath(__file__))
+    for candidate in (os.path.join(here, "heavytop-explore.html"), _core.BUILT_EXPLORER_PAGE,
+                      os.path.join(sys.prefix, "share", "heavytop", "heavytop-explore.html")):
+        if candidate and os.path.isfile(candidate):
+            return candidate
+    return ""
+
+
+def explore(body: "Body | Configuration", path: "os.PathLike[str] | str", *, spin: Optional[float] = None,
+            spin_rpm: Optional[float] = None, theta0: Optional[float] = None, phi0: Optional[float] = None,
+            theta_rate0: Optional[float] = None, phi_rate0: Optional[float] = None) -> str:
+    """Writes the explorer page of `heavytop explore --output PATH` (SPEC section 15): one
+    self-contained HTML file (the core in WebAssembly inside it; no network, opens from file://)
+    whose inputs start at this body, its damping and this motion; returns PATH.
+
+        body        a Body (SI units: A, B, C kg m^2, mass kg, length m, gravity m/s^2, damping
+                    N m s and N m), or a Configuration from load() (its body and its motion)
+        path        the page's file
+        spin        rad/s, the spin w0 (or spin_rpm in rpm; not both); theta0, phi0 rad and
+                    theta_rate0, phi_rate0 rad/s: the initial state (default 0, or the
+                    Configuration's)
+
+    The page is built by Emscripten with the rest (./scripts/build.sh --web, the CMake target
+    heavytop_web); without it this raises InvalidInput with the command line's message
+    ("explore: this heavytop was built without the explorer page, ..."), as bad input does
+    ("body.A: must be > 0"; a general body, SPEC section 11, is refused as the command refuses
+    it), and writes nothing.
+    """
+    state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
+    if isinstance(body, Configuration):
+        state, body = dict(body.motion), body.body
+    given = {"theta0": theta0, "phi0": phi0, "theta_rate0": theta_rate0, "phi_rate0": phi_rate0}
+    state.update({k: v for k, v in given.items() if v is not None})
+    if spin is not None or spin_rpm is not None:
+        state["spin"] = _spin(spin, spin_rpm)
+    page = _core.explorer_page(_explorer_page_file(), body, state["spin"], state["theta0"], state["phi0"],
+                               state["theta_rate0"], state["phi_rate0"])
+    path = os.fspath(path)
+    with open(path, "wb") as f:
+        f.write(page)
+    return path

@@ -27,7 +27,7 @@ __all__ = [
     "JsonResult", "ModelStability", "Lyapunov", "Wander", "Answer", "Stability", "NonlinearReference", "ModelComparison", "Comparison",
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
     "StabilityMap", "FittedParameter", "DecayFit", "UNITS", "SteadyPrecession", "Precession", "BodyReport",
-    "Configuration", "ReportView",
+    "Configuration", "ReportView", "MotionView",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -477,7 +477,7 @@ class Comparison(JsonResult):
         axes[1].bar(x + width / 2, pre, width, label="precession rate")
         if np.any(np.array(nut + pre) > 0):
             axes[1].set_yscale("log")
-        axes[1].set_ylabel("relative error (1)")
+        axes[1].set_ylabel("relative error (dimensionless)")
         axes[1].legend(fontsize="small")
         for ax in axes:
             ax.set_xticks(x, names)
@@ -771,12 +771,15 @@ class Trajectory(_Columns):
     float64 NumPy arrays, one element per sample. ``result["theta"]`` and ``result.theta``
     are the same array; ``to_dict()`` is the dict of every column, in the CSV's order."""
 
-    __slots__ = ("_model", "_summary")
+    __slots__ = ("_model", "_summary", "_body", "_spin")
 
-    def __init__(self, columns: Dict[str, FloatArray], summary: SimulationSummary) -> None:
+    def __init__(self, columns: Dict[str, FloatArray], summary: SimulationSummary, body: Optional[Body] = None,
+                 spin: float = 0.0) -> None:
         self._columns = dict(columns)
         self._summary = summary
         self._model = summary.model
+        self._body = body
+        self._spin = float(spin)
 
     t = _column("t", "s, the sample times")
     theta = _column("theta", "rad, theta = atan2(k_xi, k_zeta): the spin axis's tilt towards xi")
@@ -801,6 +804,21 @@ class Trajectory(_Columns):
     def summary(self) -> SimulationSummary:
         """What the solver did."""
         return self._summary
+
+    @property
+    def body(self) -> Optional[Body]:
+        """The Body simulated (None for a Trajectory made by hand)."""
+        return self._body
+
+    def view(self, height: int = 720) -> "MotionView":
+        """This motion in 3D, inline in a notebook: the report's own 3D view (three.js, from the
+        page script heavytop's build embeds; works offline), the body drawn as the uniform
+        ellipsoid of its mass and moments turning at its spin angle, the axis's tip path traced,
+        an inset from above. A MotionView (an iframe `height` pixels tall; .save(path) writes
+        the page). heavytop.show(trajectory) is the same; the trajectory's own HTML shows it."""
+        if self._body is None:
+            raise ValueError("view: this trajectory has no body (simulate() makes one that has)")
+        return MotionView(self, height)
 
     @property
     def columns(self) -> Tuple[str, ...]:
@@ -854,7 +872,82 @@ class Trajectory(_Columns):
                 rows.append(["…"] * len(columns))
             rows.append([f"{self._columns[c][k]:.6g}" for c in columns])
         header = [_views.label(c) for c in columns]
-        return head + _views.html_table(header, rows) + f"<p style='font-size: .85em'>{html.escape(self._summary.report)}</p>"
+        view = self.view()._repr_html_() if self._body is not None and len(t) >= 2 else ""
+        return (head + view + _views.html_table(header, rows)
+                + f"<p style='font-size: .85em'>{html.escape(self._summary.report)}</p>")
+
+
+class MotionView:
+    """One trajectory in the report's 3D view, as one self-contained HTML document (the report's
+    page script heavytop-report.js, three.js inside, and the motion's data inlined): shown inline
+    by a notebook in an iframe, offline. Trajectory.view() and heavytop.show(trajectory) make it;
+    .html is the page, .save(path) writes it. In a build without the page script (no npm when it
+    was built) the page says so instead."""
+
+    __slots__ = ("html", "height")
+
+    def __init__(self, trajectory: "Trajectory", height: int = 720) -> None:
+        from . import _core
+        self.height = int(height)
+        body = trajectory.body
+        script, missing = _core.page_script()
+        if script is None:
+            self.html = (f"<p class='note'>No 3D view in this build: {html.escape(str(missing))}. "
+                         f"trajectory.plot() draws the same motion.</p>")
+            return
+        data = _core.motion_view_data(body, trajectory._spin, trajectory.to_dict())
+        t = trajectory.t
+        words = (f"The {html.escape(trajectory.model)} model's motion over {t[-1]:.4g} s, the body drawn as the uniform "
+                 f"ellipsoid with its mass and moments (centre of mass at R = {body.length:.4g} m on the spin axis), "
+                 f"turning at its spin angle (the red sector on its rim). Black: the fixed point O, the vertical "
+                 f"(dashed), the path of the axis's tip. Drag to turn, scroll to zoom. Inset: straight down on the "
+                 f"tip, <span id='inset-scale'></span> from centre to edge.")
+        if body.general:  # SPEC section 11: drawn on its axis; its spin angle from (I w).e3 / C
+            words += (" This general body's centre-of-mass offset and products of inertia are not drawn, and its "
+                      "spin angle is taken from (I w).e3 / C, which they change slightly.")
+        self.html = (
+            "<!doctype html><html><head><meta charset='utf-8'><style>" + _MOTION_VIEW_STYLE + "</style></head><body>"
+            "<section id='interactive'><p>" + words + "</p><div id='scene'></div>"
+            "<div class='controls'><button id='play'>Pause</button>"
+            "<label>speed <input type='range' id='speed' min='0' max='1' step='1'> <span id='speed-value'></span></label>"
+            "<label>time <input type='range' id='scrub' min='0' max='10000' value='0' step='1'></label>"
+            " <span id='time'></span></div>"
+            "<p class='controls'><label class='exaggerate'><input type='checkbox' id='exaggerate'> "
+            "<b>exaggerate tilt x10</b> (not to scale)</label></p>"
+            "<p class='note' id='spin-note' hidden></p></section>"
+            # The page script also draws the report's plots and map; this page has neither.
+            "<div id='interactive-plots' hidden><div id='plots'></div></div>"
+            "<script>" + data.replace("</script", "<\\/script") + "</script>"
+            # The page script sizes its view once, from the scene's width when it runs: in a
+            # notebook's iframe that is 0 until the frame is laid out, so it runs only then.
+            "<script type='text/plain' id='page-script'>" + script.decode("utf-8").replace("</script", "<\\/script")
+            + "</script><script>(function start() { const scene = document.getElementById('scene');"
+            " if (!(scene.clientWidth > 0)) { requestAnimationFrame(start); return; }"
+            " const s = document.createElement('script'); s.textContent = document.getElementById('page-script').textContent;"
+            " document.body.appendChild(s); })();</script></body></html>")
+
+    def save(self, path: str) -> str:
+        """Writes the self-contained page to `path` (one file, opens offline); returns path."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.html)
+        return path
+
+    def _repr_html_(self) -> str:
+        if not self.html.startswith("<!doctype"):
+            return self.html
+        return (f"<iframe srcdoc=\"{html.escape(self.html, quote=True)}\" style=\"width: 100%; height: {self.height}px; "
+                f"border: 1px solid #ddd\" sandbox=\"allow-scripts\"></iframe>")
+
+    def __repr__(self) -> str:
+        return f"MotionView({len(self.html)} characters)"
+
+
+_MOTION_VIEW_STYLE = (
+    "body { font-family: sans-serif; margin: .5em; color: #222; font-size: 14px; } #scene { width: 100%; } "
+    "#scene canvas { display: block; border: 1px solid #ddd; } "
+    ".controls { display: flex; flex-wrap: wrap; gap: .6em 1.4em; align-items: center; margin: .6em 0; } "
+    "label.exaggerate { background: #fff3e0; border: 1px solid #f0b070; padding: .2em .6em; border-radius: 4px; } "
+    ".note { background: #fff8e1; border-left: 4px solid #f9a825; padding: .5em 1em; } #scrub { width: 18em; }")
 
 
 # ---- sweep -----------------------------------------------------------------------------------

@@ -1,4 +1,5 @@
 // stability and compare: json.loads of the very JSON the command line prints (heavytop_io).
+#include <cmath>
 #include <optional>
 
 #include <pybind11/stl.h>
@@ -23,13 +24,17 @@ namespace {
 /// (json.loads of `stability --format json`, the answer's paragraph in words): the words are
 /// io's, the same the command line's text opens with.
 py::tuple stability(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
-                    double phi_rate0, double horizon, double max_tilt) {
-  validate(body);
+                    double phi_rate0, double horizon, double max_tilt, std::optional<double> lifetime_horizon) {
+  validate_ordinary(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
-  require_positive("horizon", horizon);
+  // As `heavytop stability` checks --horizon and --lifetime-horizon.
+  if (!(std::isfinite(horizon) && horizon > 0.0)) throw InvalidInput("horizon", "must be a finite number > 0");
   AnswerOptions options;
   options.horizon = horizon;
   options.max_tilt = max_tilt;
+  if (lifetime_horizon && !(std::isfinite(*lifetime_horizon) && *lifetime_horizon > 0.0))
+    throw InvalidInput("lifetime_horizon", "must be a finite number > 0");
+  options.damped_horizon = lifetime_horizon;
   if (std::string why; !options.IsValid(&why)) {
     const auto colon = why.find(": ");
     throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
@@ -47,7 +52,7 @@ py::tuple stability(const Body& body, double spin, double theta0, double phi0, d
 py::object compare(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
                    double phi_rate0, double t_end, long long samples, std::optional<double> rtol,
                    std::optional<double> atol) {
-  validate(body);
+  validate_ordinary(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   require_positive("t_end", t_end);
   require_count("samples", samples, 3, static_cast<long long>(kMaxComparisonSamples));
@@ -63,7 +68,7 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
 py::object lifetime(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
                     double phi_rate0, std::optional<double> horizon, double max_tilt, std::optional<double> rtol,
                     std::optional<double> atol, std::optional<long long> max_steps) {
-  validate(body);
+  validate_ordinary(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   LifetimeOptions options;
   options.horizon = horizon;
@@ -81,7 +86,8 @@ void bind_analyses(py::module_& m) {
         "theta_rate0"_a, "phi_rate0"_a, "horizon"_a = py::none(), "max_tilt"_a = 1.0, "rtol"_a = py::none(),
         "atol"_a = py::none(), "max_steps"_a = py::none());
   m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a, py::kw_only(), "theta0"_a = 0.0,
-        "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0, "max_tilt"_a = 1.0);
+        "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0, "max_tilt"_a = 1.0,
+        "lifetime_horizon"_a = py::none());
   m.def("compare", &compare, docs::kCoreCompare, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
         "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "samples"_a, "rtol"_a = py::none(), "atol"_a = py::none());
 }

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "heavytop/body.hpp"
+#include "heavytop/io/formats.hpp"
 
 namespace heavytop::python {
 
@@ -15,6 +16,13 @@ py::array_t<double> to_numpy(std::vector<double>&& column) {
   py::capsule free_when_done(owner, [](void* p) { delete static_cast<std::vector<double>*>(p); });
   return py::array_t<double>({static_cast<py::ssize_t>(owner->size())}, {static_cast<py::ssize_t>(sizeof(double))},
                              owner->data(), free_when_done);
+}
+
+void validate_ordinary(const Body& body) {
+  Body ordinary = body;  // as cli/common.cpp: the body's own rules first, then its general terms
+  ordinary.general = {};
+  validate(ordinary);
+  io::refuse_general_keys(body);
 }
 
 InitialState motion(double spin, double theta0, double phi0, double theta_rate0, double phi_rate0) {

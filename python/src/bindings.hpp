@@ -23,6 +23,11 @@ py::object from_json(const std::string& text);
 /// A column as a float64 NumPy array that takes the vector over (no copy).
 py::array_t<double> to_numpy(std::vector<double>&& column);
 
+/// The body checked as every command but `body` and `simulate --model nonlinear` checks a
+/// [body] section: SPEC section 1's rules, then SPEC section 11's terms refused with the command
+/// line's message (io::refuse_general_keys: "body.Ixy: is 1e-06: the general body ...").
+void validate_ordinary(const Body& body);
+
 /// The user's initial state, validated as the command line validates it (keys "motion.*").
 InitialState motion(double spin, double theta0, double phi0, double theta_rate0, double phi_rate0);
 

@@ -55,7 +55,8 @@ constexpr const char* kCoreLifetime = R"doc(heavytop.lifetime without defaults: 
 )doc";
 
 constexpr const char* kGridValues = R"doc(The values of the command line's --vary KEY=START:STOP:COUNT, bit for bit:
-start + i (stop - start) / (count - 1), i = 0..count-1 (float64 array). Pass them to sweep()
+start + i (stop - start) / (count - 1), i = 0..count-1 (float64 array, in the key's SI unit:
+rad/s for spin, kg m^2 for A, B, C, kg for mass, m for length, m/s^2 for gravity). Pass them to sweep()
 to reproduce a command-line sweep exactly. start, stop finite; count an integer in
 [1, 100000000] (else InvalidInput, e.g. "count: must be an integer in [1, 100000000]").
 )doc";

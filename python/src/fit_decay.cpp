@@ -1,5 +1,6 @@
 // fit_decay: d_a, tau0 and w0 fitted to a measured spin decay, as json.loads of the JSON that
 // `heavytop fit-decay --format json` prints (heavytop_io).
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -17,8 +18,10 @@ using namespace pybind11::literals;
 namespace {
 
 py::object fit_decay(std::vector<double> t, std::vector<double> spin, const Body& body, std::optional<double> spin0) {
+  validate_ordinary(body);
   FitDecayOptions options;
   if (spin0) {
+    if (!(std::isfinite(*spin0) && *spin0 > 0.0)) throw InvalidInput("spin0", "must be a finite number > 0");
     options.fit_spin0 = false;
     options.spin0 = *spin0;
   }

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "heavytop/io/formats.hpp"
 #include "docs.hpp"
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/simulate.hpp"
@@ -43,6 +44,7 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
   const auto model = model_from_name(model_name);
   if (!model) throw InvalidInput("model", "must be one of " + model_names(", "));
   const bool linear = linear_kind(*model).has_value(), nonlinear = *model == Model::Nonlinear;
+  if (!nonlinear) io::refuse_general_in(body, "simulate --model " + model_name);  // as the command line
   if (*model == Model::LagrangeExact) validate_symmetric(body);
   // Unasked, a damped linear model takes the route that covers it (the closed form does not).
   const std::string how = method.value_or(body.damping.transverse > 0.0 ? "numeric" : "analytic");

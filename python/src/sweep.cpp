@@ -122,7 +122,7 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
                double theta_rate0, double phi_rate0, bool nonlinear, double horizon, double max_tilt,
                std::optional<double> rtol, std::optional<double> atol,
                const std::optional<std::string>& integrator) {
-  validate(body);
+  validate_ordinary(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   const std::vector<VariedKey> keys = varied_keys(vary);
   SweepOptions options;

@@ -67,3 +67,30 @@ def cli_json(*args):
 def cli():
     cli_binary()
     return run_cli
+
+
+# The command line's flags and the keyword arguments that are the same setting in Python.
+PYTHON_NAME = {"--samples": "samples", "--t-end": "t_end", "--rtol": "rtol", "--atol": "atol",
+               "--max-steps": "max_steps", "--method": "method", "--model": "model", "--integrator": "integrator",
+               "--step": "step", "--order": "order", "--sequence": "sequence", "--vary": "vary",
+               "--horizon": "horizon", "--max-tilt": "max_tilt", "--lifetime-horizon": "lifetime_horizon",
+               "--tilt": "tilt", "--known-spin0": "spin0", "--map": "map", "--slice": "slice"}
+
+
+def cli_error(*args):
+    """The CLI's one-line message for `args`, its key in Python's spelling ("--t-end: ..." ->
+    "t_end: ..."); the rest of the line unchanged."""
+    result = run_cli(*args, check=False)
+    assert result.returncode == 2, (args, result.returncode, result.stderr)
+    # One error line, last; a warning the command gave first (on its own line) may precede it.
+    lines = result.stderr.strip().splitlines()
+    line = lines[-1]
+    assert line.startswith("heavytop: error: "), result.stderr
+    assert all(w.startswith("heavytop: warning: ") for w in lines[:-1]), result.stderr
+    message = line[len("heavytop: error: "):]
+    key, colon, rule = message.partition(": ")
+    assert colon, message
+    if key.startswith("--"):
+        assert key in PYTHON_NAME, f"no Python name for the CLI's {key}"
+        key = PYTHON_NAME[key]
+    return f"{key}: {rule}"

@@ -29,3 +29,35 @@ def test_every_function_documents_units():
     for word in ("SI", "zeta vertical and up", "phi   = -asin(k_eta)", "theta = atan2(k_xi, k_zeta)"):
         assert word in module, word
     assert "kg m^2" in heavytop.Body.A.__doc__ and "N m" in heavytop.Body.mgR.__doc__
+
+
+# A unit as the docstrings write them (SI; rpm for spins given in rpm).
+UNIT = r"(rad/s|\brad\b|kg m\^2|\bkg\b|m/s\^2|N m\b|\brpm\b|\bJ\b|SI units|\(s\)|\bs, |\(m\)|\bm, )"
+
+
+def public_functions():
+    import inspect
+    return {name: getattr(heavytop, name) for name in heavytop.__all__
+            if inspect.isfunction(getattr(heavytop, name)) or inspect.isbuiltin(getattr(heavytop, name))}
+
+
+def test_help_lists_every_function_on_one_line():
+    import re
+    functions = public_functions()
+    assert {"stability", "simulate", "explore", "show", "report", "load", "fit_decay"} <= set(functions)
+    listing = heavytop.__doc__.split("Functions, one a line")[1].split("\n\n", 2)[1]
+    names = [re.match(r"    ([a-z_]+)\(", line).group(1) for line in listing.splitlines()]
+    assert sorted(names) == sorted(functions), set(names) ^ set(functions)  # each once, none missing
+    for line in listing.splitlines():
+        assert len(line) <= 110 and re.search(r"\[[^\]]+\]$", line), line  # the command in brackets
+    text = pydoc.render_doc(heavytop, renderer=pydoc.plaintext)
+    for name in functions:
+        assert f"    {name}(" in text, name
+
+
+def test_every_public_function_documents_its_units():
+    import re
+    for name, function in public_functions().items():
+        doc = function.__doc__ or ""
+        assert len(doc.strip().splitlines()) >= 2 or name in ("rpm",), name
+        assert re.search(UNIT, doc), f"{name}: no unit in its docstring"

@@ -10,32 +10,9 @@ import numpy as np
 import pytest
 
 import heavytop
-from conftest import BODIES, body_options, motion_options, needs_derive, run_cli
+from conftest import BODIES, body_options, cli_error, motion_options, needs_derive, run_cli
 
 GOOD = dict(A=1.0, B=1.3, C=2.0, mass=1.0, length=1.0, gravity=1.0)
-
-
-# The command line's flags and the keyword arguments that are the same setting in Python.
-PYTHON_NAME = {"--samples": "samples", "--t-end": "t_end", "--rtol": "rtol", "--atol": "atol",
-               "--max-steps": "max_steps", "--method": "method", "--model": "model", "--integrator": "integrator",
-               "--step": "step", "--order": "order", "--sequence": "sequence", "--vary": "vary",
-               "--horizon": "horizon", "--max-tilt": "max_tilt"}
-
-
-def cli_error(*args):
-    """The CLI's one-line message for `args`, its key in Python's spelling ("--t-end: ..." ->
-    "t_end: ..."); the rest of the line unchanged."""
-    result = run_cli(*args, check=False)
-    assert result.returncode == 2, (args, result.returncode, result.stderr)
-    line = result.stderr.strip()
-    assert line.startswith("heavytop: error: ") and "\n" not in line, line
-    message = line[len("heavytop: error: "):]
-    key, colon, rule = message.partition(": ")
-    assert colon, message
-    if key.startswith("--"):
-        assert key in PYTHON_NAME, f"no Python name for the CLI's {key}"
-        key = PYTHON_NAME[key]
-    return f"{key}: {rule}"
 
 
 @pytest.mark.parametrize("key,value", [

@@ -670,19 +670,6 @@ std::optional<fs::path> find_explorer_page() {
   return std::nullopt;
 }
 
-// The page's starting inputs, as its window.HEAVYTOP_INITIAL (web/explore.js): the
-// configuration's sections as a JavaScript object.
-std::string initial_json(const Body& b, const InitialState& s) {
-  using io::number;
-  return fmt::format(
-      "{{\"body\": {{\"A\": {}, \"B\": {}, \"C\": {}, \"mass\": {}, \"gravity\": {}, \"length\": {}}}, "
-      "\"motion\": {{\"spin\": {}, \"theta0\": {}, \"phi0\": {}, \"theta_rate0\": {}, \"phi_rate0\": {}}}, "
-      "\"damping\": {{\"transverse\": {}, \"axial\": {}, \"friction\": {}}}}}",
-      number(b.A), number(b.B), number(b.C), number(b.mass), number(b.gravity), number(b.length), number(s.spin),
-      number(s.theta0), number(s.phi0), number(s.theta_rate0), number(s.phi_rate0), number(b.damping.transverse),
-      number(b.damping.axial), number(b.damping.friction));
-}
-
 }  // namespace
 
 std::optional<std::string> explorer_page(const Body& body, const InitialState& state, bool shared_view) {
@@ -691,11 +678,9 @@ std::optional<std::string> explorer_page(const Body& body, const InitialState& s
   std::ifstream in(*page, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
-  std::string html = text.str();
-  const std::string mark = "/*HEAVYTOP_INITIAL*/null";
-  const auto at = html.find(mark);
-  if (!in || at == std::string::npos) throw io::Failure(fmt::format("explore: '{}' is not the explorer page", page->string()));
-  html.replace(at, mark.size(), initial_json(body, state));
+  std::optional<std::string> started = io::explorer_page(text.str(), body, state);
+  if (!in || !started) throw io::Failure(fmt::format("explore: '{}' is not the explorer page", page->string()));
+  std::string html = std::move(*started);
   if (shared_view) {  // web/assemble.cjs puts the view's script between these marks, in a <script> of its own
     const std::string begin = "<script>/*HEAVYTOP_VIEW_BEGIN*/", end = "/*HEAVYTOP_VIEW_END*/</script>";
     const auto from = html.find(begin), to = html.find(end);

@@ -86,4 +86,30 @@ std::string fit_decay_json(const DecayFit& fit);
 /// `configured`, axial and friction at full precision, so that the pasted file reproduces them).
 std::string fit_decay_text(const DecayFit& fit, const Damping& configured);
 
+/// A body with SPEC section 11's terms given by its keys (a [body] section, Python's Body), as
+/// every command but `body` and `simulate --model nonlinear` refuses it: InvalidInput naming
+/// the first nonzero key in the order body.Ixy, body.Ixz, body.Iyz, body.offset_x,
+/// body.offset_y, with its value. Nothing for an ordinary body.
+void refuse_general_keys(const Body& body);
+/// The same for `command` (e.g. "simulate --model first-order"), the model named: InvalidInput
+/// naming first_general_key(body).
+void refuse_general_in(const Body& body, const std::string& command);
+
+/// What `heavytop precession` (and Python's precession()) warns of a damped body.
+inline constexpr const char* kPrecessionIgnoresDamping =
+    "precession is the conservative body's: its damping, friction and motor are ignored (a damped body's steady "
+    "motions decay; `heavytop lifetime` follows them)";
+
+/// Why `heavytop explore` (and Python's explore()) has no page to write and how to build it:
+/// the rule of InvalidInput("explore", ...).
+inline constexpr const char* kExplorerPageMissing =
+    "this heavytop was built without the explorer page, which needs Emscripten: run ./scripts/build.sh --web "
+    "(or configure with -DHEAVYTOP_BUILD_WEB=ON and build the target heavytop_web), then run this again";
+
+/// The explorer page (SPEC section 15) that `heavytop explore` writes: `built_page`, the text of
+/// the page web/ builds (heavytop-explore.html), with its inputs starting at `body` and `state`
+/// (window.HEAVYTOP_INITIAL: the configuration's sections as a JavaScript object; SI units).
+/// nullopt when `built_page` is not the explorer page (it has no start mark).
+std::optional<std::string> explorer_page(std::string built_page, const Body& body, const InitialState& state);
+
 }  // namespace heavytop::io
