@@ -387,7 +387,7 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
 }
 
 StabilityMap read_map(const std::string& path, const std::string& key) {
-  map_file_size(path, key);
+  const std::uintmax_t file_size = map_file_size(path, key);
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
@@ -399,37 +399,88 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
   const std::string bad = fmt::format("'{}' is not a heavytop map file", printable(path));
   const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (file < 0) throw InvalidInput(key, bad + " (HDF5 cannot open it)");
+  // Every attribute heavytop reads is one value (H5Aread writes the whole dataspace into the
+  // buffer given) and its text at most kMaxText bytes (the buffer is sized from the file).
+  constexpr std::size_t kMaxText = 256;
+  auto open_attribute = [&](hid_t on, const char* name) {
+    const hid_t a = H5Aopen(on, name, H5P_DEFAULT);
+    if (a < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle space(H5Aget_space(a), H5Sclose);
+    if (space < 0 || H5Sget_simple_extent_npoints(space) != 1) {
+      H5Aclose(a);
+      throw InvalidInput(key, fmt::format("{} (attribute '{}' is not one value)", bad, name));
+    }
+    return a;
+  };
   auto read_attribute = [&](hid_t on, const char* name, hid_t type, void* value) {
-    const Handle a(H5Aopen(on, name, H5P_DEFAULT), H5Aclose);
-    if (a < 0 || H5Aread(a, type, value) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle a(open_attribute(on, name), H5Aclose);
+    if (H5Aread(a, type, value) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
   };
   auto read_text = [&](hid_t on, const char* name) {
-    const Handle a(H5Aopen(on, name, H5P_DEFAULT), H5Aclose);
-    if (a < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle a(open_attribute(on, name), H5Aclose);
     const Handle type(H5Aget_type(a), H5Tclose);
-    std::string value(H5Tget_size(type), '\0');
-    if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0 || H5Aread(a, type, value.data()) < 0)
+    if (type < 0 || H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) != 0 || H5Tget_size(type) > kMaxText)
       throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    std::string value(H5Tget_size(type), '\0');
+    if (H5Aread(a, type, value.data()) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
     return value.substr(0, value.find('\0'));
   };
   if (read_text(file, "format") != kFormatName) throw InvalidInput(key, bad + " (its format attribute)");
   std::uint64_t n_axes = 0;
   read_attribute(file, "axes", H5T_NATIVE_UINT64, &n_axes);
   if (n_axes < 1 || n_axes > kMaxSweepAxes) throw InvalidInput(key, bad + " (1 to 3 axes)");
+  // What libhdf5 allocates while it reads a dataset is sized by the file's metadata: the
+  // chunk (its dimension in the layout), each chunk's stored bytes (the chunk index) and what
+  // the filters make of them. A corrupted map asked for gigabytes (fuzz_map, issue 30), so
+  // each is checked against what heavytop writes (one dimension, chunks of at most 2^16
+  // elements, deflate only) and against the file's size before H5Dread.
+  constexpr hsize_t kMaxChunk = 1 << 16;
+  constexpr std::uintmax_t kDeflateRatio = 1032;  // zlib's largest expansion, output/input
   auto read_column = [&](const std::string& name, hid_t memory_type, std::size_t expected, auto& out) {
+    using Element = typename std::decay_t<decltype(out)>::value_type;
+    const auto layout = [&](const std::string& what) {
+      return InvalidInput(key, fmt::format("{} (dataset '{}' {})", bad, name, what));
+    };
     const Handle d(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
     if (d < 0) throw InvalidInput(key, fmt::format("{} (no dataset '{}')", bad, name));
     const Handle space(H5Dget_space(d), H5Sclose);
     if (H5Sget_simple_extent_ndims(space) != 1 || H5Sget_simple_extent_npoints(space) != hssize_t(expected))
       throw InvalidInput(key, fmt::format("{} (dataset '{}' must have {} elements)", bad, name, expected));
+    // Its elements cannot be more than the file's bytes can hold, deflated.
+    if (expected * sizeof(Element) > kDeflateRatio * file_size + kMaxChunk)
+      throw layout(fmt::format("has more elements than a file of {} bytes can hold", file_size));
     // Only the layout and the element size heavytop writes (chunked, 8-byte axes, 1-byte
     // verdicts) reach H5Dread: a mutated compact layout made HDF5 read past its own buffer
     // (fuzz_map, issue 30), which HDF5 does not check.
     const Handle create(H5Dget_create_plist(d), H5Pclose);
     const Handle type(H5Dget_type(d), H5Tclose);
-    if (create < 0 || H5Pget_layout(create) != H5D_CHUNKED || type < 0 ||
-        H5Tget_size(type) != sizeof(typename std::decay_t<decltype(out)>::value_type))
-      throw InvalidInput(key, fmt::format("{} (dataset '{}' is not laid out as heavytop writes it)", bad, name));
+    if (create < 0 || H5Pget_layout(create) != H5D_CHUNKED || type < 0 || H5Tget_size(type) != sizeof(Element))
+      throw layout("is not laid out as heavytop writes it");
+    hsize_t chunk = 0;
+    if (H5Pget_chunk(create, 1, &chunk) != 1 || chunk < 1 || chunk > std::min<hsize_t>(expected, kMaxChunk))
+      throw layout("has a chunk size heavytop does not write");
+    const int filters = H5Pget_nfilters(create);
+    for (int f = 0; f < filters; ++f) {
+      unsigned flags = 0, config = 0;
+      std::size_t values = 0;
+      if (H5Pget_filter2(create, static_cast<unsigned>(f), &flags, &values, nullptr, 0, nullptr, &config) !=
+          H5Z_FILTER_DEFLATE)
+        throw layout("has a filter heavytop does not write");
+    }
+    if (filters < 0 || filters > 1) throw layout("has a filter heavytop does not write");
+    // Every chunk written, inside the file, no larger than the file (H5Dread allocates a
+    // chunk's stored size before it reads it).
+    hsize_t chunks = 0;
+    if (H5Dget_num_chunks(d, space, &chunks) < 0 || chunks != (expected + chunk - 1) / chunk)
+      throw layout("is not written whole");
+    for (hsize_t c = 0; c < chunks; ++c) {
+      hsize_t offset = 0, stored = 0;
+      haddr_t address = 0;
+      unsigned mask = 0;
+      if (H5Dget_chunk_info(d, space, c, &offset, &mask, &address, &stored) < 0 || mask != 0 || stored < 1 ||
+          address == HADDR_UNDEF || address > file_size || stored > file_size - address)
+        throw layout("has a chunk outside the file");
+    }
     out.resize(expected);
     if (H5Dread(d, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
       throw InvalidInput(key, fmt::format("{} (dataset '{}' cannot be read)", bad, name));
