@@ -31,8 +31,10 @@ export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
 # The tests skip what cannot work under a sanitizer (hostile_input's ulimit -v check).
 export HEAVYTOP_SANITIZED=1
 
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 echo "sanitize: configuring build-asan/ (gcc, $flags)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+cmake -S . -B build-asan "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
       -DCMAKE_MODULE_LINKER_FLAGS="$flags" -DHEAVYTOP_BUILD_BENCHMARKS=OFF -DHEAVYTOP_TEST_SUBDIRECTORY=OFF \
       >/dev/null
