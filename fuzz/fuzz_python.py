@@ -10,7 +10,9 @@ added.
 
 Rules, for every call: it returns, or raises ValueError (heavytop.InvalidInput is one) or
 TypeError whose message is one non-empty line; or RuntimeError with one line when a valid
-computation failed (the step limit, a model that does not apply; counted apart). Anything
+computation failed (the step limit, a model that does not apply; counted apart); or the
+fuzzer's own value's exception (OwnError from a __float__ that raises), let through as float()
+lets it through. Anything
 else is a finding: another exception type, a multi-line message, a crash or an abort of the
 interpreter (the child dies by a signal), a call that neither returns nor polls Ctrl-C for
 WATCHDOG seconds (a hang), MemoryError.
@@ -43,12 +45,16 @@ class Slow(BaseException):
     """Raised by SIGALRM in a call that runs past CALL_LIMIT (heavytop polls signals)."""
 
 
+class OwnError(ArithmeticError):
+    """Raised by the fuzzer's own hostile values: heavytop lets it through, as float() does."""
+
+
 class BadFloat:
     def __float__(self):
-        raise ArithmeticError("__float__ refuses")
+        raise OwnError("__float__ refuses")
 
     def __index__(self):
-        raise ArithmeticError("__index__ refuses")
+        raise OwnError("__index__ refuses")
 
     def __repr__(self):
         return "BadFloat()"
@@ -80,7 +86,7 @@ class BadPath:
 
 class BadMapping(dict):
     def items(self):
-        raise LookupError("items refuses")
+        raise OwnError("items refuses")
 
     def __repr__(self):
         return "BadMapping()"
@@ -235,7 +241,7 @@ def child(seed, first, count, work, one):
         raise Slow()
 
     signal.signal(signal.SIGALRM, alarm)
-    counts = {"returned": 0, "ValueError": 0, "TypeError": 0, "RuntimeError": 0, "slow": 0}
+    counts = {"returned": 0, "ValueError": 0, "TypeError": 0, "RuntimeError": 0, "slow": 0, "own": 0}
     findings = []
     current = os.path.join(work, "current")
     for i in range(first, first + count):
@@ -259,6 +265,8 @@ def child(seed, first, count, work, one):
             outcome = "slow"
         except KeyboardInterrupt:
             outcome = "slow"
+        except OwnError:
+            outcome = "own"  # the value's own exception, let through
         except (ValueError, TypeError, RuntimeError) as e:
             message = str(e)
             kind = "RuntimeError" if isinstance(e, RuntimeError) else "TypeError" if isinstance(e, TypeError) else "ValueError"
