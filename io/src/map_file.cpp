@@ -18,6 +18,10 @@
 
 #ifdef HEAVYTOP_HAVE_HDF5
 #include <hdf5.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #endif
 
 namespace heavytop::io {
@@ -415,15 +419,10 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
   check(H5Fflush(file, H5F_SCOPE_LOCAL), failed);
 }
 
-StabilityMap read_map(const std::string& path, const std::string& key) {
-  const std::uintmax_t file_size = map_file_size(path, key);
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
-    char magic[4] = {};
-    probe.read(magic, 4);
-    if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
-  }
+namespace {
+
+/// The HDF5 map read in this process (read_map runs it in a child).
+StabilityMap read_map_hdf5(const std::string& path, const std::string& key, std::uintmax_t file_size) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string bad = fmt::format("'{}' is not a heavytop map file", printable(path));
   if (const std::string heap = oversized_heap(path, file_size); !heap.empty())
@@ -550,6 +549,120 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     }
   }
   return map;
+}
+
+/// A map as bytes through the pipe from the child: for each axis its key's length, key, count
+/// and values; the nonlinear flag; the packed verdicts (pack_verdicts).
+template <class T>
+void put(std::string& out, T value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+template <class T>
+T take(std::string_view& in) {
+  if (in.size() < sizeof(T)) throw Failure("read_map: the reading process sent a torn map");
+  T value;
+  std::memcpy(&value, in.data(), sizeof value);
+  in.remove_prefix(sizeof value);
+  return value;
+}
+
+std::string pack_map(const StabilityMap& map) {
+  std::string out;
+  put<std::uint64_t>(out, map.axes.size());
+  for (const MapAxis& axis : map.axes) {
+    put<std::uint64_t>(out, axis.key.size());
+    out += axis.key;
+    put<std::uint64_t>(out, axis.values.size());
+    for (double v : axis.values) put(out, v);
+  }
+  put<std::uint8_t>(out, map.nonlinear);
+  pack_verdicts(map.verdicts, out);
+  return out;
+}
+
+StabilityMap unpack_map(std::string_view in) {
+  StabilityMap map;
+  map.axes.resize(take<std::uint64_t>(in));
+  for (MapAxis& axis : map.axes) {
+    const auto length = take<std::uint64_t>(in);
+    if (length > in.size()) throw Failure("read_map: the reading process sent a torn map");
+    axis.key = std::string(in.substr(0, length));
+    in.remove_prefix(length);
+    const auto count = take<std::uint64_t>(in);
+    if (count > in.size() / sizeof(double)) throw Failure("read_map: the reading process sent a torn map");
+    axis.values.resize(count);
+    for (double& v : axis.values) v = take<double>(in);
+  }
+  map.nonlinear = take<std::uint8_t>(in) != 0;
+  map.verdicts = unpack_verdicts(in);
+  return map;
+}
+
+}  // namespace
+
+StabilityMap read_map(const std::string& path, const std::string& key) {
+  const std::uintmax_t file_size = map_file_size(path, key);
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
+    char magic[4] = {};
+    probe.read(magic, 4);
+    if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
+  }
+  // libhdf5 trusts a file's metadata (fuzz_map, issue 30: an attribute's name without its NUL
+  // made it read past its buffer in H5O_attr_shared_decode; a heap's size asked malloc for
+  // 2^49 bytes). heavytop checks what it can (oversized_heap, the attributes, the layout and
+  // the chunks) and reads the map in a child process, so whatever libhdf5 does on a corrupted
+  // file stays there: the parent receives the map or the refusal, or refuses the file the
+  // child died on.
+  int channel[2];
+  if (::pipe(channel) != 0) throw Failure(fmt::format("{}: cannot read '{}' (no pipe)", key, printable(path)));
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(channel[0]);
+    ::close(channel[1]);
+    throw Failure(fmt::format("{}: cannot read '{}' (no process)", key, printable(path)));
+  }
+  if (child == 0) {
+    ::close(channel[0]);
+    std::string out;
+    int status = 0;
+    try {
+      out = pack_map(read_map_hdf5(path, key, file_size));
+    } catch (const InvalidInput& e) {
+      out = e.rule();
+      status = 3;
+    } catch (...) {
+      status = 4;
+    }
+    for (std::size_t at = 0; at < out.size();) {
+      const ssize_t n = ::write(channel[1], out.data() + at, out.size() - at);
+      if (n <= 0 && errno != EINTR) ::_exit(5);
+      if (n > 0) at += static_cast<std::size_t>(n);
+    }
+    ::_exit(status);
+  }
+  ::close(channel[1]);
+  std::string received;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(channel[0], buffer, sizeof buffer);
+    if (n > 0) received.append(buffer, static_cast<std::size_t>(n));
+    else if (n == 0 || errno != EINTR) break;
+  }
+  ::close(channel[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    try {
+      return unpack_map(received);
+    } catch (const Failure&) {
+    }
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 3 && received.find_first_of("\n\r") == std::string::npos)
+    throw InvalidInput(key, received);
+  throw InvalidInput(key, fmt::format("'{}' is not a heavytop map file (libhdf5 failed on it)", printable(path)));
 }
 #endif
 
