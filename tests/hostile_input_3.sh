@@ -2,7 +2,8 @@
 # Hostile input, round 3 (issue 30): meshes, damped verdicts, lifetime, precession, fit-decay,
 # maps and resumes, empty values, and the first round's leftovers. Each check is a case the
 # review found wrong, and more of its own.
-source "$(dirname "$0")/hostile_harness.sh"
+here=$(cd "$(dirname "$0")" && pwd)  # before the harness changes into its scratch folder
+source "$here/hostile_harness.sh"
 
 # ---- 1. Mesh files: every one reads or is refused (exit 2, the part and the file named) --------
 python3 - <<'PY'
@@ -237,7 +238,7 @@ PY
   # sanitizers, which report what libhdf5 does in the child.
   if [ -z "${HEAVYTOP_SANITIZED:-}" ]; then
     for f in hdf5-heap-size hdf5-attribute-name-overflow; do
-      cp "$(dirname "$0")/../fuzz/corpus/map/$f" "$f.h5"
+      cp "$here/../fuzz/corpus/map/$f" "$f.h5"
       check "fuzz_map's $f is refused, exit 2" run 2 report --map "$f.h5" --output "rep-$f"
       check "... in one line naming the file" bash -c "[ \$(wc -l < err) -eq 1 ] && grep -q \"error: --map: '$f.h5' is not a heavytop map file (\" err"
     done
