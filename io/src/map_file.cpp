@@ -22,6 +22,16 @@
 #include <unistd.h>
 
 #include <cerrno>
+#if defined(__SANITIZE_ADDRESS__)
+#define HEAVYTOP_SANITIZED_CHILD 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define HEAVYTOP_SANITIZED_CHILD 1
+#endif
+#endif
+#ifdef HEAVYTOP_SANITIZED_CHILD
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void));
+#endif
 #endif
 
 namespace heavytop::io {
@@ -624,6 +634,11 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     throw Failure(fmt::format("{}: cannot read '{}' (no process)", key, printable(path)));
   }
   if (child == 0) {
+#ifdef HEAVYTOP_SANITIZED_CHILD
+    // A sanitizer's report in the child is the refusal below, not the caller's crash: the death
+    // callback the caller set (libFuzzer's, which saves the input as a crash) is not run here.
+    __sanitizer_set_death_callback(+[] { ::_exit(6); });
+#endif
     ::close(channel[0]);
     std::string out;
     int status = 0;
