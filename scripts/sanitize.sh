@@ -7,7 +7,8 @@
 #
 #   scripts/sanitize.sh [CTEST ARGS...]        e.g. scripts/sanitize.sh -R hostile_input
 #
-# Then every fuzzer runs for 60 s (HEAVYTOP_FUZZ_SECONDS) through scripts/fuzz.sh.
+# Then every fuzzer runs for 60 s (HEAVYTOP_FUZZ_SECONDS) through scripts/fuzz.sh, and the
+# Python argument fuzzer (fuzz/fuzz_python.py) on the sanitized module.
 #
 # Left out (by label): `package` (package_test.sh installs the libraries and builds consumers
 # without -fsanitize, and the instrumented static libraries cannot link there) and `pip` (pip
@@ -58,6 +59,12 @@ LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.s
   ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" \
   ctest --test-dir build-asan --output-on-failure -LE 'package|pip' -R '^python' "$@" || status=1
 keep_output python
+# The Python module's argument conversion (fuzz/fuzz_python.py, a seeded random driver: every
+# failure a ValueError or TypeError in one line, never a crash), sanitized module, same preload.
+echo "sanitize: fuzz_python for ${HEAVYTOP_FUZZ_SECONDS:-60} s (the sanitized module)"
+LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
+  ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" PYTHONPATH="$root/build-asan/python" \
+  /usr/bin/python3 fuzz/fuzz_python.py --seconds "${HEAVYTOP_FUZZ_SECONDS:-60}" --seed "$(date +%s)" || status=1
 
 # A short run of every fuzzer (issue 30: the configuration, the command line, mesh files, the
 # decay CSV, maps and sweep journals), each HEAVYTOP_FUZZ_SECONDS (60) under ASan and UBSan
