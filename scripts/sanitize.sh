@@ -7,7 +7,8 @@
 #
 #   scripts/sanitize.sh [CTEST ARGS...]        e.g. scripts/sanitize.sh -R hostile_input
 #
-# Then every fuzzer runs for 60 s (HEAVYTOP_FUZZ_SECONDS) through scripts/fuzz.sh.
+# Then every fuzzer runs for 60 s (HEAVYTOP_FUZZ_SECONDS) through scripts/fuzz.sh, and the
+# Python argument fuzzer (fuzz/fuzz_python.py) on the sanitized module.
 #
 # Left out (by label): `package` (package_test.sh installs the libraries and builds consumers
 # without -fsanitize, and the instrumented static libraries cannot link there) and `pip` (pip
@@ -31,8 +32,10 @@ export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
 # The tests skip what cannot work under a sanitizer (hostile_input's ulimit -v check).
 export HEAVYTOP_SANITIZED=1
 
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 echo "sanitize: configuring build-asan/ (gcc, $flags)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+cmake -S . -B build-asan "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
       -DCMAKE_MODULE_LINKER_FLAGS="$flags" -DHEAVYTOP_BUILD_BENCHMARKS=OFF -DHEAVYTOP_TEST_SUBDIRECTORY=OFF \
       >/dev/null
@@ -56,6 +59,12 @@ LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.s
   ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" \
   ctest --test-dir build-asan --output-on-failure -LE 'package|pip' -R '^python' "$@" || status=1
 keep_output python
+# The Python module's argument conversion (fuzz/fuzz_python.py, a seeded random driver: every
+# failure a ValueError or TypeError in one line, never a crash), sanitized module, same preload.
+echo "sanitize: fuzz_python for ${HEAVYTOP_FUZZ_SECONDS:-60} s (the sanitized module)"
+LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
+  ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" PYTHONPATH="$root/build-asan/python" \
+  /usr/bin/python3 fuzz/fuzz_python.py --seconds "${HEAVYTOP_FUZZ_SECONDS:-60}" --seed "$(date +%s)" || status=1
 
 # A short run of every fuzzer (issue 30: the configuration, the command line, mesh files, the
 # decay CSV, maps and sweep journals), each HEAVYTOP_FUZZ_SECONDS (60) under ASan and UBSan

@@ -279,7 +279,7 @@ InvalidInput overflow(const LinearModel& model, double spin, bool overflows_at_r
   const char* what = blamed->what;
   const double value = blamed->value;
   return InvalidInput(key, fmt::format("{} = {:g} is out of the range the stability analysis computes in: the "
-                                       "characteristic polynomial overflows a double at rest or at the spins "
+                                       "characteristic polynomial overflows or underflows a double at rest or at the spins "
                                        "where the verdict changes",
                                        what, value));
 }
@@ -352,7 +352,20 @@ StabilityVerdict damped_stability(const LinearModel& model, double spin) {
 
 }  // namespace
 
+/// True when a term of the model, nonzero, has a fourth power below the smallest normal double:
+/// the conditions' coefficients hold products of up to four terms (C^4 in the discriminant),
+/// which then underflow and lose the verdict's ends (a body scaled by 1e-150 had no critical
+/// spin, and a subnormal inertia no verdict). Refused as the overflow is, naming the term.
+static bool underflows(const LinearModel& model) {
+  for (double t : {model.M(0, 0), model.M(1, 1), model.G1(0, 1), model.K0(0, 0), model.K0(1, 1), model.damping}) {
+    const double t2 = t * t;
+    if (t != 0.0 && t2 * t2 < std::numeric_limits<double>::min()) return true;
+  }
+  return false;
+}
+
 StabilityVerdict linear_stability(const LinearModel& model, double spin) {
+  if (underflows(model)) throw overflow(model, spin, true);
   if (model.damped()) return damped_stability(model, spin);
   const SpinCharacteristic c = spin_characteristic(model);
   const double s = spin * spin;

@@ -2,7 +2,8 @@
 # Hostile input, round 3 (issue 30): meshes, damped verdicts, lifetime, precession, fit-decay,
 # maps and resumes, empty values, and the first round's leftovers. Each check is a case the
 # review found wrong, and more of its own.
-source "$(dirname "$0")/hostile_harness.sh"
+here=$(cd "$(dirname "$0")" && pwd)  # before the harness changes into its scratch folder
+source "$here/hostile_harness.sh"
 
 # ---- 1. Mesh files: every one reads or is refused (exit 2, the part and the file named) --------
 python3 - <<'PY'
@@ -63,6 +64,20 @@ m = d["mass"]; assert abs(m - 6000) < 1e-9, m
 C = 6000 * (1 + 4) / 3  # about z through O: (a^2 + b^2) / 3 for the box [0,1]x[0,2]
 assert abs(d["C"] - C) < 1e-9 * C, d["C"]'
 done
+# The MPI adapter (heavytop-mpi, dynamically linked, which mpirun's copies of heavytop become)
+# refuses them the same way, once, and reads the binary PLY.
+if [ -x "$(dirname "$H")/heavytop-mpi" ] && command -v mpirun > /dev/null; then
+  mpi=(mpirun --allow-run-as-root --oversubscribe -n 2 "$H" sweep --config mesh.toml --vary spin=0:300:3)
+  for f in empty.stl count.stl not.ply box-le-truncated.ply; do
+    mesh_body $f
+    check "mesh $f under mpirun: refused, exit 2" bash -c "${mpi[*]} --output m.csv > /dev/null 2> err; [ \$? -eq 2 ]"
+    check "... said once, naming the part and the file" bash -c "[ \$(grep -c \"body.part\\[0\\] ($f): .*'.*$f'\" err) -eq 1 ]"
+    check "... nothing written" test ! -e m.csv -a ! -e m.csv.partial
+  done
+  mesh_body box-le.ply  # read: the box [0,1] x [0,2] x [0,3] is off the axis, a general body the sweep refuses
+  check "a binary PLY under mpirun is read (was an assertion in Assimp)" bash -c "${mpi[*]} --output m.csv > /dev/null 2> err; [ \$? -eq 2 ]"
+  check "... its centre of mass (0.5, 1) m found, once" bash -c "[ \$(grep -c 'centre of mass is 1.12 m off the z axis (x 0.5, y 1)' err) -eq 1 ]"
+fi
 
 # ---- 2. Verdicts and numbers -------------------------------------------------------------------
 sym="--A 1 --B 1 --C 2 --mass 1 --gravity 1 --length 1"
@@ -115,6 +130,22 @@ check "--length 1e200" run 2 stability --length 1e200
 check "... naming the length (m g R), not the spin" says "length"
 check "a body scaled by 1e150" run 2 stability --A 1.2e146 --B 1.2e146 --C 4e145 --mass 1e149 --length 0.03
 check "... not blaming the spin" bash -c "! grep -q 'motion.spin\|--spin' err"
+# Scaled by 1e-150 (A, B, C by 1e-150, m by 1e-150 at the same R): the same top, so the same
+# critical spin, or a refusal that names a body key, never the spin.
+scale="--A 1.2e-154 --B 1.2e-154 --C 4e-155 --mass 1e-151 --length 0.03"
+"$H" stability $scale --format json > out 2> err
+case $? in
+  0) check "a body scaled by 1e-150: the critical spin of the unscaled body" python3 -c "
+import json, subprocess, sys
+d = json.load(open('out'))
+e = json.loads(subprocess.run(['$H', 'stability', '--A', '1.2e-4', '--B', '1.2e-4', '--C', '4e-5', '--mass', '0.1',
+                               '--length', '0.03', '--format', 'json'], capture_output=True, check=True).stdout)
+a, b = d['models']['linearized']['critical_spin'], e['models']['linearized']['critical_spin']
+assert abs(a - b) <= 1e-9 * b, (a, b)" ;;
+  2) check "a body scaled by 1e-150, refused: not blaming the spin" bash -c "! grep -q 'motion.spin\|--spin' err"
+     check "... naming a body key (its C^4 underflows; it had no critical spin)" says "error: body\.[ABC]: .* underflows" ;;
+  *) check "a body scaled by 1e-150: exit 0 or 2" false ;;
+esac
 check "a subnormal inertia" run 2 stability --A 1e-310 --B 1e-310 --C 1e-310
 check "... naming body.A" says "A"
 check "... not the spin" bash -c "! grep -q 'motion.spin\|--spin' err"
@@ -171,6 +202,51 @@ open('pad.h5.partial', 'wb').write(head + records[:whole] + b'\0' * 6 * 1000)
 PY
   check "... padded with zeros (1000 records, more than the grid) resumes to exactly the fresh map" bash -c "
     '$H' sweep $slow --format hdf5 --output pad.h5 2>/dev/null && cmp pad.h5 fresh.h5"
+  # A corrupted HDF5 map whose metadata asks for gigabytes (fuzz_map found one): a text
+  # attribute's size, a chunk's stored size in the chunk index, the chunk dimension in the
+  # layout (that one libhdf5 refuses itself, at H5Dopen). Each is refused, exit 2, one line naming --map and the file, before any allocation
+  # of that size (under a 1.5 GB address-space limit, where the sanitizers allow one, the
+  # allocation itself failed before: bad_alloc, exit 1, or HDF5's "cannot be read").
+  check "a small HDF5 map" run 0 sweep --vary spin=0:300:4 --vary B/A=0.8:1.2:3 --format hdf5 --output g.h5
+  python3 - <<'PY'
+import struct
+d = bytearray(open('g.h5', 'rb').read())
+def patched(name, at, value):
+    e = bytearray(d); e[at:at + 4] = struct.pack('<I', value); open(name, 'wb').write(e)
+# The "format" attribute's datatype (a fixed string of 24 bytes): its size, 4 bytes before the
+# scalar dataspace (8 bytes) that precedes the text.
+text = d.index(b'heavytop stability map 1')
+assert struct.unpack('<I', d[text - 12:text - 8])[0] == 24
+patched('text-size.h5', text - 12, 0x7ffffff0)
+# The first chunk B-tree (a v1 B-tree node of type 1): its first record's stored size.
+node = next(i for i in range(len(d) - 4) if d[i:i + 4] == b'TREE' and d[i + 4] == 1)
+patched('chunk-bytes.h5', node + 24, 0x7ffffff0)
+# A chunked layout message (version 3, class 2, rank + 1 = 2) pointing at that node: the chunk dimension.
+layout = next(i for i in range(len(d) - 12) if d[i:i + 3] == bytes([3, 2, 2]) and
+              struct.unpack('<Q', d[i + 3:i + 11])[0] == node)
+patched('chunk-dim.h5', layout + 11, 0x7ffffff0)
+PY
+  limit=""; [ -z "${HEAVYTOP_SANITIZED:-}" ] && limit="ulimit -v 1500000;"
+  for f in text-size.h5 chunk-bytes.h5 chunk-dim.h5; do
+    check "a corrupted HDF5 map ($f) is refused, exit 2" bash -c "$limit '$H' report --map $f --output rep-$f > /dev/null 2> err; [ \$? -eq 2 ]"
+    check "... in one line naming --map and the file" bash -c "[ \$(wc -l < err) -eq 1 ] && grep -q \"error: --map: '$f' is not a heavytop map file (\" err"
+    check "... nothing written" test ! -e rep-$f
+  done
+  # Corrupted maps fuzz_map found, which libhdf5 itself mishandles (a heap's size of 2^49
+  # bytes; an attribute name without its NUL, read past its buffer in H5Aopen): refused, exit 2,
+  # one line, the parent untouched (libhdf5 reads in a child process). Not under the
+  # sanitizers, which report what libhdf5 does in the child.
+  if [ -z "${HEAVYTOP_SANITIZED:-}" ]; then
+    for f in hdf5-heap-size hdf5-attribute-name-overflow; do
+      cp "$here/../fuzz/corpus/map/$f" "$f.h5"
+      check "fuzz_map's $f is refused, exit 2" run 2 report --map "$f.h5" --output "rep-$f"
+      check "... in one line naming the file" bash -c "[ \$(wc -l < err) -eq 1 ] && grep -q \"error: --map: '$f.h5' is not a heavytop map file (\" err"
+    done
+  fi
+  run 2 report --map text-size.h5 --output rep-t
+  check "... the text's size, refused as such" says "attribute 'format'"
+  run 2 report --map chunk-bytes.h5 --output rep-b
+  check "... the chunk's stored size, refused as such" says "has a chunk outside the file"
 fi
 
 # ---- 5. Refused, not run: empty values, counts out of range, horizons beyond a double ----------

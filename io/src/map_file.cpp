@@ -18,6 +18,20 @@
 
 #ifdef HEAVYTOP_HAVE_HDF5
 #include <hdf5.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#if defined(__SANITIZE_ADDRESS__)
+#define HEAVYTOP_SANITIZED_CHILD 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define HEAVYTOP_SANITIZED_CHILD 1
+#endif
+#endif
+#ifdef HEAVYTOP_SANITIZED_CHILD
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void));
+#endif
 #endif
 
 namespace heavytop::io {
@@ -186,6 +200,35 @@ hid_t certificate_type() {
 
 void check(herr_t status, const std::string& what) {
   if (status < 0) throw Failure(what);
+}
+
+/// "" when every HDF5 heap in the file fits in it, else what does not. libhdf5 allocates a
+/// local heap's data segment ("HEAP", version 0) and a global heap collection ("GCOL",
+/// version 1) at the size their header gives before it reads them (fuzz_map, issue 30: a
+/// mutated size asked malloc for 2^49 bytes in H5C_protect). libhdf5 only loads a heap whose
+/// header starts with its signature, so every heap it could load is among those found here;
+/// heavytop's own files (8-byte lengths) have one local heap per group and no global heap.
+std::string oversized_heap(const std::string& path, std::uintmax_t file_size) {
+  std::ifstream in(path, std::ios::binary);
+  constexpr std::size_t kBlock = 1 << 20, kHeader = 24;
+  std::string block;
+  for (std::uintmax_t at = 0; at < file_size; at += kBlock) {
+    block.assign(kBlock + kHeader, '\0');
+    in.seekg(static_cast<std::streamoff>(at));
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    block.resize(static_cast<std::size_t>(in.gcount()));
+    in.clear();
+    for (const std::string_view signature : {std::string_view("HEAP\0\0\0\0", 8), std::string_view("GCOL\1\0\0\0", 8)}) {
+      for (std::size_t i = block.find(signature); i != std::string::npos && i < kBlock; i = block.find(signature, i + 1)) {
+        if (i + 16 > block.size()) return fmt::format("a heap at byte {} is torn", at + i);
+        std::uint64_t size = 0;  // little-endian, bytes 8-15 of the header
+        for (int b = 7; b >= 0; --b) size = size << 8 | static_cast<unsigned char>(block[i + 8 + b]);
+        if (size > file_size)
+          return fmt::format("a heap at byte {} claims {} bytes, more than the file's {}", at + i, size, file_size);
+      }
+    }
+  }
+  return "";
 }
 #endif
 
@@ -386,50 +429,98 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
   check(H5Fflush(file, H5F_SCOPE_LOCAL), failed);
 }
 
-StabilityMap read_map(const std::string& path, const std::string& key) {
-  map_file_size(path, key);
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
-    char magic[4] = {};
-    probe.read(magic, 4);
-    if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
-  }
+namespace {
+
+/// The HDF5 map read in this process (read_map runs it in a child).
+StabilityMap read_map_hdf5(const std::string& path, const std::string& key, std::uintmax_t file_size) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string bad = fmt::format("'{}' is not a heavytop map file", printable(path));
+  if (const std::string heap = oversized_heap(path, file_size); !heap.empty())
+    throw InvalidInput(key, fmt::format("{} ({})", bad, heap));
   const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (file < 0) throw InvalidInput(key, bad + " (HDF5 cannot open it)");
+  // Every attribute heavytop reads is one value (H5Aread writes the whole dataspace into the
+  // buffer given) and its text at most kMaxText bytes (the buffer is sized from the file).
+  constexpr std::size_t kMaxText = 256;
+  auto open_attribute = [&](hid_t on, const char* name) {
+    const hid_t a = H5Aopen(on, name, H5P_DEFAULT);
+    if (a < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle space(H5Aget_space(a), H5Sclose);
+    if (space < 0 || H5Sget_simple_extent_npoints(space) != 1) {
+      H5Aclose(a);
+      throw InvalidInput(key, fmt::format("{} (attribute '{}' is not one value)", bad, name));
+    }
+    return a;
+  };
   auto read_attribute = [&](hid_t on, const char* name, hid_t type, void* value) {
-    const Handle a(H5Aopen(on, name, H5P_DEFAULT), H5Aclose);
-    if (a < 0 || H5Aread(a, type, value) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle a(open_attribute(on, name), H5Aclose);
+    if (H5Aread(a, type, value) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
   };
   auto read_text = [&](hid_t on, const char* name) {
-    const Handle a(H5Aopen(on, name, H5P_DEFAULT), H5Aclose);
-    if (a < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    const Handle a(open_attribute(on, name), H5Aclose);
     const Handle type(H5Aget_type(a), H5Tclose);
-    std::string value(H5Tget_size(type), '\0');
-    if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0 || H5Aread(a, type, value.data()) < 0)
+    if (type < 0 || H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) != 0 || H5Tget_size(type) > kMaxText)
       throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
+    std::string value(H5Tget_size(type), '\0');
+    if (H5Aread(a, type, value.data()) < 0) throw InvalidInput(key, fmt::format("{} (attribute '{}')", bad, name));
     return value.substr(0, value.find('\0'));
   };
   if (read_text(file, "format") != kFormatName) throw InvalidInput(key, bad + " (its format attribute)");
   std::uint64_t n_axes = 0;
   read_attribute(file, "axes", H5T_NATIVE_UINT64, &n_axes);
   if (n_axes < 1 || n_axes > kMaxSweepAxes) throw InvalidInput(key, bad + " (1 to 3 axes)");
+  // What libhdf5 allocates while it reads a dataset is sized by the file's metadata: the
+  // chunk (its dimension in the layout), each chunk's stored bytes (the chunk index) and what
+  // the filters make of them. A corrupted map asked for gigabytes (fuzz_map, issue 30), so
+  // each is checked against what heavytop writes (one dimension, chunks of at most 2^16
+  // elements, deflate only) and against the file's size before H5Dread.
+  constexpr hsize_t kMaxChunk = 1 << 16;
+  constexpr std::uintmax_t kDeflateRatio = 1032;  // zlib's largest expansion, output/input
   auto read_column = [&](const std::string& name, hid_t memory_type, std::size_t expected, auto& out) {
+    using Element = typename std::decay_t<decltype(out)>::value_type;
+    const auto layout = [&](const std::string& what) {
+      return InvalidInput(key, fmt::format("{} (dataset '{}' {})", bad, name, what));
+    };
     const Handle d(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
     if (d < 0) throw InvalidInput(key, fmt::format("{} (no dataset '{}')", bad, name));
     const Handle space(H5Dget_space(d), H5Sclose);
     if (H5Sget_simple_extent_ndims(space) != 1 || H5Sget_simple_extent_npoints(space) != hssize_t(expected))
       throw InvalidInput(key, fmt::format("{} (dataset '{}' must have {} elements)", bad, name, expected));
+    // Its elements cannot be more than the file's bytes can hold, deflated.
+    if (expected * sizeof(Element) > kDeflateRatio * file_size + kMaxChunk)
+      throw layout(fmt::format("has more elements than a file of {} bytes can hold", file_size));
     // Only the layout and the element size heavytop writes (chunked, 8-byte axes, 1-byte
     // verdicts) reach H5Dread: a mutated compact layout made HDF5 read past its own buffer
     // (fuzz_map, issue 30), which HDF5 does not check.
     const Handle create(H5Dget_create_plist(d), H5Pclose);
     const Handle type(H5Dget_type(d), H5Tclose);
-    if (create < 0 || H5Pget_layout(create) != H5D_CHUNKED || type < 0 ||
-        H5Tget_size(type) != sizeof(typename std::decay_t<decltype(out)>::value_type))
-      throw InvalidInput(key, fmt::format("{} (dataset '{}' is not laid out as heavytop writes it)", bad, name));
+    if (create < 0 || H5Pget_layout(create) != H5D_CHUNKED || type < 0 || H5Tget_size(type) != sizeof(Element))
+      throw layout("is not laid out as heavytop writes it");
+    hsize_t chunk = 0;
+    if (H5Pget_chunk(create, 1, &chunk) != 1 || chunk < 1 || chunk > std::min<hsize_t>(expected, kMaxChunk))
+      throw layout("has a chunk size heavytop does not write");
+    const int filters = H5Pget_nfilters(create);
+    for (int f = 0; f < filters; ++f) {
+      unsigned flags = 0, config = 0;
+      std::size_t values = 0;
+      if (H5Pget_filter2(create, static_cast<unsigned>(f), &flags, &values, nullptr, 0, nullptr, &config) !=
+          H5Z_FILTER_DEFLATE)
+        throw layout("has a filter heavytop does not write");
+    }
+    if (filters < 0 || filters > 1) throw layout("has a filter heavytop does not write");
+    // Every chunk written, inside the file, no larger than the file (H5Dread allocates a
+    // chunk's stored size before it reads it).
+    hsize_t chunks = 0;
+    if (H5Dget_num_chunks(d, space, &chunks) < 0 || chunks != (expected + chunk - 1) / chunk)
+      throw layout("is not written whole");
+    for (hsize_t c = 0; c < chunks; ++c) {
+      hsize_t offset = 0, stored = 0;
+      haddr_t address = 0;
+      unsigned mask = 0;
+      if (H5Dget_chunk_info(d, space, c, &offset, &mask, &address, &stored) < 0 || mask != 0 || stored < 1 ||
+          address == HADDR_UNDEF || address > file_size || stored > file_size - address)
+        throw layout("has a chunk outside the file");
+    }
     out.resize(expected);
     if (H5Dread(d, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
       throw InvalidInput(key, fmt::format("{} (dataset '{}' cannot be read)", bad, name));
@@ -468,6 +559,125 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     }
   }
   return map;
+}
+
+/// A map as bytes through the pipe from the child: for each axis its key's length, key, count
+/// and values; the nonlinear flag; the packed verdicts (pack_verdicts).
+template <class T>
+void put(std::string& out, T value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+template <class T>
+T take(std::string_view& in) {
+  if (in.size() < sizeof(T)) throw Failure("read_map: the reading process sent a torn map");
+  T value;
+  std::memcpy(&value, in.data(), sizeof value);
+  in.remove_prefix(sizeof value);
+  return value;
+}
+
+std::string pack_map(const StabilityMap& map) {
+  std::string out;
+  put<std::uint64_t>(out, map.axes.size());
+  for (const MapAxis& axis : map.axes) {
+    put<std::uint64_t>(out, axis.key.size());
+    out += axis.key;
+    put<std::uint64_t>(out, axis.values.size());
+    for (double v : axis.values) put(out, v);
+  }
+  put<std::uint8_t>(out, map.nonlinear);
+  pack_verdicts(map.verdicts, out);
+  return out;
+}
+
+StabilityMap unpack_map(std::string_view in) {
+  StabilityMap map;
+  map.axes.resize(take<std::uint64_t>(in));
+  for (MapAxis& axis : map.axes) {
+    const auto length = take<std::uint64_t>(in);
+    if (length > in.size()) throw Failure("read_map: the reading process sent a torn map");
+    axis.key = std::string(in.substr(0, length));
+    in.remove_prefix(length);
+    const auto count = take<std::uint64_t>(in);
+    if (count > in.size() / sizeof(double)) throw Failure("read_map: the reading process sent a torn map");
+    axis.values.resize(count);
+    for (double& v : axis.values) v = take<double>(in);
+  }
+  map.nonlinear = take<std::uint8_t>(in) != 0;
+  map.verdicts = unpack_verdicts(in);
+  return map;
+}
+
+}  // namespace
+
+StabilityMap read_map(const std::string& path, const std::string& key) {
+  const std::uintmax_t file_size = map_file_size(path, key);
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw InvalidInput(key, fmt::format("cannot read '{}'", printable(path)));
+    char magic[4] = {};
+    probe.read(magic, 4);
+    if (std::string_view(magic, 4) != "\x89HDF") return read_map_csv(read_whole(path, key), key);
+  }
+  // libhdf5 trusts a file's metadata (fuzz_map, issue 30: an attribute's name without its NUL
+  // made it read past its buffer in H5O_attr_shared_decode; a heap's size asked malloc for
+  // 2^49 bytes). heavytop checks what it can (oversized_heap, the attributes, the layout and
+  // the chunks) and reads the map in a child process, so whatever libhdf5 does on a corrupted
+  // file stays there: the parent receives the map or the refusal, or refuses the file the
+  // child died on.
+  int channel[2];
+  if (::pipe(channel) != 0) throw Failure(fmt::format("{}: cannot read '{}' (no pipe)", key, printable(path)));
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(channel[0]);
+    ::close(channel[1]);
+    throw Failure(fmt::format("{}: cannot read '{}' (no process)", key, printable(path)));
+  }
+  if (child == 0) {
+#ifdef HEAVYTOP_SANITIZED_CHILD
+    // A sanitizer's report in the child is the refusal below, not the caller's crash: the death
+    // callback the caller set (libFuzzer's, which saves the input as a crash) is not run here.
+    __sanitizer_set_death_callback(+[] { ::_exit(6); });
+#endif
+    ::close(channel[0]);
+    std::string out;
+    int status = 0;
+    try {
+      out = pack_map(read_map_hdf5(path, key, file_size));
+    } catch (const InvalidInput& e) {
+      out = e.rule();
+      status = 3;
+    } catch (...) {
+      status = 4;
+    }
+    for (std::size_t at = 0; at < out.size();) {
+      const ssize_t n = ::write(channel[1], out.data() + at, out.size() - at);
+      if (n <= 0 && errno != EINTR) ::_exit(5);
+      if (n > 0) at += static_cast<std::size_t>(n);
+    }
+    ::_exit(status);
+  }
+  ::close(channel[1]);
+  std::string received;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(channel[0], buffer, sizeof buffer);
+    if (n > 0) received.append(buffer, static_cast<std::size_t>(n));
+    else if (n == 0 || errno != EINTR) break;
+  }
+  ::close(channel[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    try {
+      return unpack_map(received);
+    } catch (const Failure&) {
+    }
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 3 && received.find_first_of("\n\r") == std::string::npos)
+    throw InvalidInput(key, received);
+  throw InvalidInput(key, fmt::format("'{}' is not a heavytop map file (libhdf5 failed on it)", printable(path)));
 }
 #endif
 

@@ -61,6 +61,7 @@ examples/notebooks/tour.ipynb is a tour.
     m = heavytop.simulate(top, "nonlinear", spin=200.0, theta0=0.05, t_end=1.0, samples=2001)
     m.t, m.theta                                                               # s, rad
 """
+from . import _arguments  # noqa: F401 - one-line TypeErrors from _core, before anything takes its functions
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
                    explore, load, precession, read_map, report, rpm, show, simulate, stability, sweep)

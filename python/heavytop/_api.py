@@ -430,6 +430,9 @@ def _spin(spin: Optional[float], spin_rpm: Optional[float]) -> float:
     return rpm(spin_rpm) if spin_rpm is not None else (0.0 if spin is None else spin)
 
 
+_MAX_DECAY_POINTS = (32 << 20) // 4  # kMaxDecayDataBytes / the shortest row, "0,0\n"
+
+
 def fit_decay(t: npt.ArrayLike, spin: npt.ArrayLike, body: Optional[Body] = None, *,
               spin0: Optional[float] = None) -> DecayFit:
     """The axial damping d_a and the dry friction tau0 of a top ([damping] axial, friction),
@@ -453,6 +456,13 @@ def fit_decay(t: npt.ArrayLike, spin: npt.ArrayLike, body: Optional[Body] = None
     and non-decreasing", "spin0: must be a finite number > 0 ...", "body.C: ...". A fit that
     does not converge raises RuntimeError (its .result holds the DecayFit).
     """
+    for key, values in (("t", t), ("spin", spin)):  # refused before NumPy allocates them (range(10**12))
+        try:
+            count = len(values)
+        except TypeError:
+            continue
+        if count > _MAX_DECAY_POINTS:
+            raise _invalid(key, f"{count} points; at most {_MAX_DECAY_POINTS} (the rows fit-decay's largest CSV, 32 MiB, holds)")
     fit = DecayFit.from_json(_core.fit_decay(np.asarray(t, dtype=np.float64).ravel().tolist(),
                                              np.asarray(spin, dtype=np.float64).ravel().tolist(),
                                              body if body is not None else _core.example_toy_top(), spin0=spin0))
