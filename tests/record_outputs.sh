@@ -21,7 +21,7 @@ run() {
   local id
   id=$(printf '%03d' $n)
   printf '%s\n' "$*" > "$out/$id.cmd"
-  "$H" "$@" > "$out/$id.out" 2> "$out/$id.err"
+  (exec -a heavytop "$H" "$@") > "$out/$id.out" 2> "$out/$id.err"  # argv[0] as in help, whichever binary
   echo $? > "$out/$id.rc"
 }
 
