@@ -15,6 +15,7 @@
 #include "heavytop/rigid_body.hpp"
 
 #include "detail/integration.hpp"
+#include "detail/sampling.hpp"
 #include "detail/streams.hpp"
 
 namespace heavytop {
@@ -658,41 +659,16 @@ class TaylorIntegrator {
 template <class System>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
               const NonlinearOptions& options, TaylorSummary* summary) {
-  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
+  using State = typename TaylorIntegrator<System>::State;
+  const double horizon = samples.horizon();
   TaylorIntegrator<System> integrator(body, System(body), System::state_of(rb0), horizon, options, summary);
-  const ConservedQuantities initial = System::conserved(body, rb0);
-
-  const std::size_t room = std::min(samples.count, samples.chunk);
-  Trajectory out;
-  out.reserve(room);
-  add_conserved_columns(out, room);
-  const std::size_t damping_column = out.extra.size();
-  if constexpr (System::kDamped) add_damping_columns(out, room, body.damping.driven);
-  const AxisAngles a0 = axis_angles_of(rb0);  // t = 0 from the input itself (SPEC section 2)
-  typename TaylorIntegrator<System>::State x = System::state_of(rb0);
-  for (std::size_t i = 0; i < samples.count; ++i) {
-    const double t = samples.time(i);
-    ConservedQuantities q = initial;
-    AxisAngles a = a0;
-    if (t > 0.0) {
-      advance_to(integrator, t, options.progress);
-      integrator.interpolate(t, x);
-      const RigidBodyState rb = System::rigid_body(x);
-      q = System::conserved(body, rb);
-      a = axis_angles_of(rb);
-    }
-    push_angles(out, t, a);
-    push_conserved(out, q, initial);
-    if constexpr (System::kDamped) {
-      out.extra[damping_column].second.push_back(x[System::kWork]);
-      out.extra[damping_column + 1].second.push_back(x[System::kVerticalLoss]);
-      out.extra[damping_column + 2].second.push_back(x[System::kAxialLoss]);
-      if (body.damping.driven)
-        out.extra[damping_column + 3].second.push_back(motor_torque(body.damping, x[6], (body.A - body.B) * x[4] * x[5]));
-    }
-    maybe_flush(samples, out, i + 1 == samples.count);
-    if (options.progress) options.progress(t);
-  }
+  write_samples(integrator, body, rb0, System::conserved(body, rb0), System::kDamped, samples, options.progress,
+                [&body](const State& x) {
+                  const RigidBodyState rb = System::rigid_body(x);
+                  SampleValues v = sample_of(rb, System::conserved(body, rb));
+                  if constexpr (System::kDamped) v.taken = {x[System::kWork], x[System::kVerticalLoss], x[System::kAxialLoss]};
+                  return v;
+                });
 }
 
 // ---- Events on the series ---------------------------------------------------------------------------
@@ -835,10 +811,9 @@ void detail::stream_taylor(const Body& body, const InitialState& initial, const 
 
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
                            const NonlinearOptions& options, TaylorSummary* summary) {
-  validate_times(times);
-  Trajectory out;
-  detail::stream_taylor(body, initial, gather(times, out), options, summary);
-  return out;
+  return gathered(times, [&](const SampleStream& samples) {
+    detail::stream_taylor(body, initial, samples, options, summary);
+  });
 }
 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
