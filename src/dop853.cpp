@@ -60,16 +60,13 @@ class Dop853 {
     bool rejected = false;
     for (;;) {
       if (attempts_ >= max_steps_)
-        throw std::runtime_error(fmt::format(
-            "dop853: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
-            "loosen rtol/atol)", max_steps_, t_));
+        fail("dop853", StepOutcome::MaxSteps, t_, max_steps_);
       const double left = horizon_ - t_old_;
       double h = h_;
       const bool last = left > 0.0 && !(h < left);
       if (last) h = left;
       if (!(t_old_ + h > t_old_))
-        throw std::runtime_error(fmt::format(
-            "dop853: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_old_));
+        fail("dop853", StepOutcome::StepUnderflow, t_old_);
       ++attempts_;
       const double err = attempt(h);
       const double fac11 = std::pow(err, 1.0 / 8.0);
@@ -77,8 +74,7 @@ class Dop853 {
         double hnew = h / std::clamp(fac11 / 0.9, 1.0 / 6.0, 1.0 / 0.333);
         if (rejected) hnew = std::min(hnew, h);
         if (!std::all_of(y_new_.begin(), y_new_.end(), [](double v) { return std::isfinite(v); }))
-          throw std::runtime_error(
-              fmt::format("dop853: the state stopped being finite at t = {:.6g} s", t_old_));
+          fail("dop853", StepOutcome::NotFinite, t_old_);
         h_done_ = h;
         h_ = last ? std::max(h_, hnew) : hnew;
         t_ = last ? horizon_ : t_old_ + h;
@@ -88,8 +84,7 @@ class Dop853 {
       }
       if (summary_) ++summary_->rejected_steps;
       if (++rejections > 100 || !std::isfinite(err))
-        throw std::runtime_error(fmt::format(
-            "dop853: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_old_));
+        fail("dop853", StepOutcome::StepUnderflow, t_old_);
       rejected = true;
       h_ = h / std::min(1.0 / 0.333, fac11 / 0.9);
     }

@@ -508,10 +508,7 @@ class TaylorIntegrator {
   // One step from time(): the series at time(), its step, the state at its end. Afterwards
   // interpolate() covers [previous_time(), time()] from the same series.
   void step() {
-    if (steps_ >= max_steps_)
-      throw std::runtime_error(fmt::format(
-          "taylor: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
-          "loosen rtol/atol)", max_steps_, t_));
+    if (steps_ >= max_steps_) fail("taylor", StepOutcome::MaxSteps, t_, max_steps_);
     normalise();
     for (int i = 0; i < N; ++i) jet_.c[0][i] = x_[i];
     for (int i = N; i < W; ++i) jet_.c[0][i] = 0.0;
@@ -531,9 +528,7 @@ class TaylorIntegrator {
     double h = std::min(std::pow(norm_pm1, -1.0 / (order_ - 1)), std::pow(norm_p, -1.0 / order_));
     const double left = horizon_ - t_;
     if (left > 0.0 && !(h < left)) h = left;  // never beyond the horizon (dense output inside)
-    if (!(t_ + h > t_) || !std::isfinite(h))
-      throw std::runtime_error(fmt::format(
-          "taylor: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_));
+    if (!(t_ + h > t_) || !std::isfinite(h)) fail("taylor", StepOutcome::StepUnderflow, t_);
 
     // Dry friction: the step ends where its mode does (the series holds for that mode only).
     double event = -1.0;
@@ -553,8 +548,7 @@ class TaylorIntegrator {
       if (event >= 0.0) change_friction_mode();
     }
     if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
-      throw std::runtime_error(
-          fmt::format("taylor: the state stopped being finite at t = {:.6g} s", t_old_));
+      fail("taylor", StepOutcome::NotFinite, t_old_);
     if (summary_) monitor();
   }
 

@@ -59,6 +59,27 @@ inline void validate_times(const std::vector<double>& times) {
   }
 }
 
+// ---- Outcomes ------------------------------------------------------------------------------------
+
+// How a run of an error-controlled integrator fails (heyoka's taylor_outcome): too many steps,
+// a step size lost in the rounding of t (the tolerance cannot be met), a state no longer finite.
+enum class StepOutcome { MaxSteps, StepUnderflow, NotFinite };
+
+// Throws the one-line failure of integrator `who` ("nonlinear", "taylor", "dop853") at t (s),
+// the one message formatter of every integrator; `max_steps` is the limit passed (MaxSteps).
+[[noreturn, gnu::cold]] inline void fail(const char* who, StepOutcome outcome, double t, std::size_t max_steps = 0) {
+  switch (outcome) {
+    case StepOutcome::MaxSteps:
+      throw std::runtime_error(fmt::format("{}: more than max_steps = {} integration steps before t = {:.6g} s "
+                                           "(raise max_steps or loosen rtol/atol)", who, max_steps, t));
+    case StepOutcome::StepUnderflow:
+      throw std::runtime_error(
+          fmt::format("{}: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", who, t));
+    case StepOutcome::NotFinite: break;
+  }
+  throw std::runtime_error(fmt::format("{}: the state stopped being finite at t = {:.6g} s", who, t));
+}
+
 // ---- One step of Odeint's controlled dopri5 (nonlinear.cpp, general_body.cpp) ----------------
 
 // The most rejections in a row before a step is given up as lost in rounding.
@@ -73,27 +94,22 @@ template <class Controlled, class System, class State>
 void controlled_step(Controlled& controlled, System& system, const State& x_old, const State& dxdt_old, double& t,
                      State& x, State& dxdt, double& dt, std::size_t& attempts, std::size_t max_steps,
                      NonlinearSummary* summary) {
-  auto underflow = [&] {
-    return std::runtime_error(fmt::format(
-        "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t));
-  };
   for (int rejections = 0;;) {
-    if (attempts >= max_steps)
-      throw std::runtime_error(fmt::format("nonlinear: more than max_steps = {} integration steps before t = {:.6g} "
-                                           "s (raise max_steps or loosen rtol/atol)", max_steps, t));
-    if (!(t + dt > t)) throw underflow();  // lost in the rounding of t (or not a number)
+    if (attempts >= max_steps) fail("nonlinear", StepOutcome::MaxSteps, t, max_steps);
+    // Lost in the rounding of t (or not a number).
+    if (!(t + dt > t)) fail("nonlinear", StepOutcome::StepUnderflow, t);
     ++attempts;
     const double t_before = t;
     const auto result = controlled.try_step(system, x_old, dxdt_old, t, x, dxdt, dt);
     if (summary) summary->rhs_evaluations += 6;  // FSAL: six new stages per attempt
     if (result == boost::numeric::odeint::success) {
       if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); }))
-        throw std::runtime_error(fmt::format("nonlinear: the state stopped being finite at t = {:.6g} s", t_before));
+        fail("nonlinear", StepOutcome::NotFinite, t_before);
       return;
     }
     if (summary) ++summary->rejected_steps;
     // A long run of rejections: rounding, not the method, limits the error.
-    if (++rejections > kMaxConsecutiveRejections) throw underflow();
+    if (++rejections > kMaxConsecutiveRejections) fail("nonlinear", StepOutcome::StepUnderflow, t);
   }
 }
 
