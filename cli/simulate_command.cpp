@@ -106,7 +106,7 @@ Action add_simulate_command(CLI::App& app) {
     if (!linear && o->method_option->count())
       throw InvalidInput("--method", "applies to the linear models only");
     const auto integrator = integrator_from_name(o->integrator);
-    if (!integrator) throw InvalidInput("--integrator", "must be auto, taylor, dop853, dopri5 or splitting");
+    if (!integrator) throw InvalidInput("--integrator", "must be " + integrator_names(", ", " or "));
     for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option, o->max_steps_option})
       if (given->count() && !nonlinear)
         throw InvalidInput(given->get_name(), "applies to --model nonlinear only");

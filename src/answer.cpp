@@ -1,4 +1,5 @@
 #include "heavytop/answer.hpp"
+#include "heavytop/simulate.hpp"
 
 #include <cmath>
 #include <exception>
@@ -112,7 +113,8 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
   }
   a.why = AnswerCase::NotFallen;
   try {
-    const TiltExtremes run = tilt_extremes(body, initial, options.horizon, options.max_tilt, options.integrator);
+    const TiltExtremes run =
+        tilt_extremes(Integrator::Dopri5, body, initial, options.horizon, options.max_tilt, options.integrator);
     a.max_tilt = run.max_tilt;
     if (run.exceeded) {
       a.verdict = AnswerVerdict::Falls;

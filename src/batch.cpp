@@ -35,20 +35,12 @@ double detail::series_root(const double* s, int p, double a, double b, double fa
   return 0.5 * (bracket.first + bracket.second);
 }
 
-void detail::fail_max_steps(std::size_t max_steps, double t) {
-  throw std::runtime_error(fmt::format(
-      "taylor: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
-      "loosen rtol/atol)", max_steps, t));
-}
+// The kernels' failures (batch.hpp), as the scalar Taylor integrator's.
+void detail::fail_max_steps(std::size_t max_steps, double t) { fail("taylor", StepOutcome::MaxSteps, t, max_steps); }
 
-void detail::fail_underflow(double t) {
-  throw std::runtime_error(
-      fmt::format("taylor: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t));
-}
+void detail::fail_underflow(double t) { fail("taylor", StepOutcome::StepUnderflow, t); }
 
-void detail::fail_not_finite(double t) {
-  throw std::runtime_error(fmt::format("taylor: the state stopped being finite at t = {:.6g} s", t));
-}
+void detail::fail_not_finite(double t) { fail("taylor", StepOutcome::NotFinite, t); }
 
 // ---- Instruction sets ---------------------------------------------------------------------------
 

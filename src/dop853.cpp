@@ -13,6 +13,7 @@
 
 #include "detail/dop853_tableau.hpp"
 #include "detail/integration.hpp"
+#include "detail/sampling.hpp"
 #include "detail/tilt_scan.hpp"
 #include "detail/streams.hpp"
 
@@ -31,6 +32,7 @@ constexpr int kN = 7;
 // are sampled.
 class Dop853 {
  public:
+  using State = heavytop::State;
   Dop853(const Body& body, const State& x0, double horizon, const NonlinearOptions& options,
          NonlinearSummary* summary)
       : body_(body), system_{body}, rtol_(options.rtol), atol_(options.atol), horizon_(horizon),
@@ -58,16 +60,13 @@ class Dop853 {
     bool rejected = false;
     for (;;) {
       if (attempts_ >= max_steps_)
-        throw std::runtime_error(fmt::format(
-            "dop853: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
-            "loosen rtol/atol)", max_steps_, t_));
+        fail("dop853", StepOutcome::MaxSteps, t_, max_steps_);
       const double left = horizon_ - t_old_;
       double h = h_;
       const bool last = left > 0.0 && !(h < left);
       if (last) h = left;
       if (!(t_old_ + h > t_old_))
-        throw std::runtime_error(fmt::format(
-            "dop853: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_old_));
+        fail("dop853", StepOutcome::StepUnderflow, t_old_);
       ++attempts_;
       const double err = attempt(h);
       const double fac11 = std::pow(err, 1.0 / 8.0);
@@ -75,8 +74,7 @@ class Dop853 {
         double hnew = h / std::clamp(fac11 / 0.9, 1.0 / 6.0, 1.0 / 0.333);
         if (rejected) hnew = std::min(hnew, h);
         if (!std::all_of(y_new_.begin(), y_new_.end(), [](double v) { return std::isfinite(v); }))
-          throw std::runtime_error(
-              fmt::format("dop853: the state stopped being finite at t = {:.6g} s", t_old_));
+          fail("dop853", StepOutcome::NotFinite, t_old_);
         h_done_ = h;
         h_ = last ? std::max(h_, hnew) : hnew;
         t_ = last ? horizon_ : t_old_ + h;
@@ -86,8 +84,7 @@ class Dop853 {
       }
       if (summary_) ++summary_->rejected_steps;
       if (++rejections > 100 || !std::isfinite(err))
-        throw std::runtime_error(fmt::format(
-            "dop853: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_old_));
+        fail("dop853", StepOutcome::StepUnderflow, t_old_);
       rejected = true;
       h_ = h / std::min(1.0 / 0.333, fac11 / 0.9);
     }
@@ -281,40 +278,20 @@ void detail::stream_dop853(const Body& body, const InitialState& initial, const 
   validate(initial);
   validate(options);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
+  const double horizon = samples.horizon();
   Dop853 integrator(body, to_vector(rb0), horizon, options, summary);
-  const ConservedQuantities initial_q = conserved_quantities(body, rb0);
-
-  const std::size_t room = std::min(samples.count, samples.chunk);
-  Trajectory out;
-  out.reserve(room);
-  add_conserved_columns(out, room);
-  const AxisAngles a0 = axis_angles_of(rb0);
-  State x;
-  for (std::size_t i = 0; i < samples.count; ++i) {
-    const double t = samples.time(i);
-    ConservedQuantities q = initial_q;
-    AxisAngles a = a0;
-    if (t > 0.0) {
-      advance_to(integrator, t, options.progress);
-      integrator.interpolate(t, x);
-      const RigidBodyState rb = from_vector(x);
-      q = conserved_quantities(body, rb);
-      a = axis_angles_of(rb);
-    }
-    push_angles(out, t, a);
-    push_conserved(out, q, initial_q);
-    maybe_flush(samples, out, i + 1 == samples.count);
-    if (options.progress) options.progress(t);
-  }
+  write_samples(integrator, body, rb0, conserved_quantities(body, rb0), false, samples, options.progress,
+                [&body](const State& x) {
+                  const RigidBodyState rb = from_vector(x);
+                  return sample_of(rb, conserved_quantities(body, rb));
+                });
 }
 
 Trajectory simulate_dop853(const Body& body, const InitialState& initial, const std::vector<double>& times,
                            const NonlinearOptions& options, NonlinearSummary* summary) {
-  validate_times(times);
-  Trajectory out;
-  detail::stream_dop853(body, initial, gather(times, out), options, summary);
-  return out;
+  return gathered(times, [&](const SampleStream& samples) {
+    detail::stream_dop853(body, initial, samples, options, summary);
+  });
 }
 
 }  // namespace heavytop

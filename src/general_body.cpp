@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "detail/integration.hpp"
+#include "detail/sampling.hpp"
 #include "detail/streams.hpp"
 
 namespace heavytop {
@@ -97,6 +98,7 @@ void check_general(const Body& body, const NonlinearOptions& options) {
 // of nonlinear.cpp's Integrator, without its spin-factored variables and damping).
 class GeneralIntegrator {
  public:
+  using State = heavytop::State;
   using Stepper = odeint::runge_kutta_dopri5<State>;
   using Controlled = odeint::controlled_runge_kutta<Stepper>;
 
@@ -168,27 +170,6 @@ class GeneralIntegrator {
 };
 
 
-// Calls sample(i, t, state) for each sample time, the state at t = 0 being x0 itself.
-template <class Sample>
-void run_general(const Body& body, const RigidBodyState& x0, std::size_t count,
-                 const std::function<double(std::size_t)>& time, const NonlinearOptions& options,
-                 NonlinearSummary* summary, const Sample& sample) {
-  const double horizon = count == 0 ? 0.0 : time(count - 1);
-  GeneralIntegrator integrator(body, x0, horizon, options, summary);
-  State x{};
-  for (std::size_t i = 0; i < count; ++i) {
-    const double t = time(i);
-    if (t > 0.0) {
-      advance_to(integrator, t, options.progress);
-      integrator.interpolate(t, x);
-      sample(i, t, from_vector(x));
-    } else {
-      sample(i, t, x0);
-    }
-    if (options.progress) options.progress(t);
-  }
-}
-
 }  // namespace
 
 std::vector<RigidBodyState> integrate_general_body(const Body& body, const RigidBodyState& x0,
@@ -197,8 +178,9 @@ std::vector<RigidBodyState> integrate_general_body(const Body& body, const Rigid
   check_general(body, options);
   validate_times(times);
   std::vector<RigidBodyState> out(times.size());
-  run_general(body, x0, times.size(), [&times](std::size_t i) { return times[i]; }, options, summary,
-              [&out](std::size_t i, double, const RigidBodyState& x) { out[i] = x; });
+  GeneralIntegrator integrator(body, x0, times.empty() ? 0.0 : times.back(), options, summary);
+  for_each_sample(integrator, times.size(), [&times](std::size_t i) { return times[i]; }, options.progress,
+                  [&](std::size_t i, double, const State* x) { out[i] = x ? from_vector(*x) : x0; });
   return out;
 }
 
@@ -207,25 +189,19 @@ void detail::stream_general(const Body& body, const InitialState& initial, const
   check_general(body, options);
   validate(initial);
   const RigidBodyState x0 = initial_rigid_body_state(initial);
-  const ConservedQuantities q0 = general_conserved_quantities(body, x0);
-  const std::size_t room = std::min(samples.count, samples.chunk);
-  Trajectory out;
-  out.reserve(room);
-  add_conserved_columns(out, room);
-  run_general(body, x0, samples.count, samples.time, options, summary,
-              [&](std::size_t i, double t, const RigidBodyState& x) {
-                push_angles(out, t, axis_angles_of(x));
-                push_conserved(out, i == 0 && t == 0.0 ? q0 : general_conserved_quantities(body, x), q0);
-                maybe_flush(samples, out, i + 1 == samples.count);
-              });
+  GeneralIntegrator integrator(body, x0, samples.horizon(), options, summary);
+  write_samples(integrator, body, x0, general_conserved_quantities(body, x0), false, samples, options.progress,
+                [&body](const State& x) {
+                  const RigidBodyState rb = from_vector(x);
+                  return sample_of(rb, general_conserved_quantities(body, rb));
+                });
 }
 
 Trajectory simulate_general_body(const Body& body, const InitialState& initial, const std::vector<double>& times,
                                  const NonlinearOptions& options, NonlinearSummary* summary) {
-  validate_times(times);
-  Trajectory out;
-  detail::stream_general(body, initial, gather(times, out), options, summary);
-  return out;
+  return gathered(times, [&](const SampleStream& samples) {
+    detail::stream_general(body, initial, samples, options, summary);
+  });
 }
 
 }  // namespace heavytop

@@ -54,7 +54,8 @@ Lifetime spin_decay(const Body& body, const InitialState& initial, const Lifetim
 
 Lifetime lifetime(const Body& body, const InitialState& initial, const LifetimeOptions& options) {
   Lifetime life = spin_decay(body, initial, options);
-  const TiltExtremes e = tilt_extremes(body, initial, life.horizon, options.max_tilt, options.integrator, &life.summary);
+  const TiltExtremes e = tilt_extremes(options.method, body, initial, life.horizon, options.max_tilt, options.integrator,
+                                        &life.summary);
   life.largest_tilt = e.max_tilt;
   if (e.exceeded) {
     life.fall_time = e.t_end;

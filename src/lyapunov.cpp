@@ -1,4 +1,5 @@
 #include "heavytop/lyapunov.hpp"
+#include "heavytop/simulate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -388,7 +389,8 @@ Wander axis_wander(const Body& body, const InitialState& initial, double horizon
     if (!(std::isfinite(horizon) && horizon > 0.0)) throw InvalidInput("horizon", "must be a finite number > 0");
     NonlinearOptions capped = options;
     capped.max_steps = std::min(capped.max_steps, kWanderMaxSteps);
-    w.max_tilt = tilt_extremes(body, initial, horizon, std::numeric_limits<double>::infinity(), capped).max_tilt;
+    w.max_tilt = tilt_extremes(Integrator::Dopri5, body, initial, horizon, std::numeric_limits<double>::infinity(), capped)
+                    .max_tilt;
   } catch (const InvalidInput& e) {
     w.max_tilt.reset();
     w.note = fmt::format("{}: {}", e.key(), e.rule());

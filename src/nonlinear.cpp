@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "detail/integration.hpp"
+#include "detail/sampling.hpp"
 #include "detail/tilt_scan.hpp"
 #include "detail/streams.hpp"
 
@@ -396,47 +397,16 @@ template <bool Symmetric, bool Damped>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
               const NonlinearOptions& options, NonlinearSummary* summary) {
   using State = StateOf<Damped>;
-  const State x0 = to_state<State>(rb0);
-  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
-  Integrator<Symmetric, Damped> integrator(body, x0, horizon, options, summary);
-  const ConservedQuantities initial = conserved_quantities(body, rb0);
-
-  const std::size_t room = std::min(samples.count, samples.chunk);
-  Trajectory out;
-  out.reserve(room);
-  add_conserved_columns(out, room);
-  const std::size_t damping_column = out.extra.size();
-  if constexpr (Damped) add_damping_columns(out, room, body.damping.driven);
-
-  // At t = 0 the angles come from the initial attitude itself (SPEC section 2), not from a
-  // round trip through the quaternion; k' = R (w x e3) as in angles_of().
-  const AxisAngles a0 = axis_angles_of(rb0);
-  State x = x0;
-  for (std::size_t i = 0; i < samples.count; ++i) {
-    const double t = samples.time(i);
-    ConservedQuantities q = initial;
-    AxisAngles a = a0;
-    if (t > 0.0) {
-      advance_to(integrator, t, options.progress);
-      integrator.interpolate(t, x);
-      q = conserved_quantities(body, to_rigid_body(x));
-      a = angles_of(x);
-    }
-    push_angles(out, t, a);
-    push_conserved(out, q, initial);
-    if constexpr (Damped) {
-      out.extra[damping_column].second.push_back(x[kWork]);
-      out.extra[damping_column + 1].second.push_back(x[kVerticalLoss]);
-      out.extra[damping_column + 2].second.push_back(x[kAxialLoss]);
-      if (body.damping.driven) {
-        const RigidBodyState rb = to_rigid_body(x);
-        out.extra[damping_column + 3].second.push_back(
-            motor_torque(body.damping, rb.omega.z(), (body.A - body.B) * rb.omega.x() * rb.omega.y()));
-      }
-    }
-    maybe_flush(samples, out, i + 1 == samples.count);
-    if (options.progress) options.progress(t);
-  }
+  const double horizon = samples.horizon();
+  Integrator<Symmetric, Damped> integrator(body, to_state<State>(rb0), horizon, options, summary);
+  // Angles from p itself (k' = R (w x e3) as in angles_of()), E, L_zeta, C w3 from the body.
+  write_samples(integrator, body, rb0, conserved_quantities(body, rb0), Damped, samples, options.progress,
+                [&body](const State& x) {
+                  SampleValues v{angles_of(x), to_rigid_body(x), {}, {}};
+                  v.conserved = conserved_quantities(body, v.body);
+                  if constexpr (Damped) v.taken = {x[kWork], x[kVerticalLoss], x[kAxialLoss]};
+                  return v;
+                });
 }
 
 template <bool Symmetric, bool Damped>
@@ -481,10 +451,9 @@ ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState&
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const NonlinearOptions& options,
                               NonlinearSummary* summary) {
-  validate_times(times);
-  Trajectory out;
-  detail::stream_nonlinear(body, initial, gather(times, out), options, summary);
-  return out;
+  return gathered(times, [&](const SampleStream& samples) {
+    detail::stream_nonlinear(body, initial, samples, options, summary);
+  });
 }
 
 void detail::stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,

@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 
 #include "heavytop/frames.hpp"
+#include "heavytop/dop853.hpp"
 #include "heavytop/lagrange_exact.hpp"
+#include "heavytop/taylor.hpp"
 
 #include "detail/integration.hpp"
 #include "detail/streams.hpp"
@@ -93,7 +95,7 @@ Model model_of(LinearModelKind kind) {
 
 std::string_view name(Integrator integrator) {
   switch (integrator) {
-    case Integrator::Adaptive: return "dopri5";
+    case Integrator::Dopri5: return "dopri5";
     case Integrator::Splitting: return "splitting";
     case Integrator::Taylor: return "taylor";
     case Integrator::Dop853: return "dop853";
@@ -103,10 +105,20 @@ std::string_view name(Integrator integrator) {
 }
 
 std::optional<Integrator> integrator_from_name(std::string_view name) {
-  if (name == "dopri5" || name == "adaptive") return Integrator::Adaptive;
-  for (Integrator i : {Integrator::Splitting, Integrator::Taylor, Integrator::Dop853, Integrator::Auto})
+  if (name == "adaptive") return Integrator::Dopri5;
+  for (Integrator i : kIntegrators)
     if (name == heavytop::name(i)) return i;
   return std::nullopt;
+}
+
+std::string integrator_names(std::string_view separator, std::string_view last, bool with_splitting) {
+  std::vector<std::string_view> names;
+  for (Integrator i : kIntegrators)
+    if (with_splitting || i != Integrator::Splitting) names.push_back(name(i));
+  std::string joined;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    joined += fmt::format("{}{}", k == 0 ? "" : k + 1 == names.size() ? last : separator, names[k]);
+  return joined;
 }
 
 Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances) {
@@ -122,9 +134,31 @@ Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerance
   // The general body (SPEC section 11) takes the Taylor integrator at every tolerance: over 10 s
   // it took 1.1-1.5x less time than dopri5 at 1e-6, 2.4-4.7x at 1e-9, 6.4-13x at 1e-12, with
   // errors 1-40 times smaller (docs/integrators.md); damped, it goes to dopri5, which refuses it.
-  if (is_general(body) && !body.damping.conservative()) return Integrator::Adaptive;
+  if (is_general(body) && !body.damping.conservative()) return Integrator::Dopri5;
   const double eps = std::min(tolerances.rtol, tolerances.atol);
-  return eps > kAutoTaylorBelow && body.A == body.B && !is_general(body) ? Integrator::Adaptive : Integrator::Taylor;
+  return eps > kAutoTaylorBelow && body.A == body.B && !is_general(body) ? Integrator::Dopri5 : Integrator::Taylor;
+}
+
+Integrator resolve_integrator(Integrator asked, const Body& body, const NonlinearOptions& tolerances) {
+  return asked == Integrator::Auto ? choose_integrator(body, tolerances) : asked;
+}
+
+TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
+                           double stop_above, const NonlinearOptions& tolerances, NonlinearSummary* summary) {
+  switch (resolve_integrator(integrator, body, tolerances)) {
+    case Integrator::Taylor: {
+      TaylorSummary taylor;
+      const TiltExtremes e =
+          taylor_tilt_extremes(body, initial, horizon, stop_above, tolerances, summary ? &taylor : nullptr);
+      if (summary) *summary = taylor.work;
+      return e;
+    }
+    case Integrator::Dop853: return dop853_tilt_extremes(body, initial, horizon, stop_above, tolerances);
+    case Integrator::Splitting:
+      throw InvalidInput("integrator", fmt::format("must be {} (the splitting has no error control to judge a run by)",
+                                                   integrator_names(", ", " or ", false)));
+    default: return tilt_extremes(body, initial, horizon, stop_above, tolerances, summary);
+  }
 }
 
 bool SimulateOptions::IsValid(std::string* why) const {
@@ -185,7 +219,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
   const bool general = is_general(body);
   if (general) {  // SPEC section 11: the nonlinear model by dopri5 or the Taylor integrator only
     if (model != Model::Nonlinear) refuse_general(body, fmt::format("the {} model", name(model)).c_str());
-    if (options.integrator != Integrator::Auto && options.integrator != Integrator::Adaptive &&
+    if (options.integrator != Integrator::Auto && options.integrator != Integrator::Dopri5 &&
         options.integrator != Integrator::Taylor)
       throw InvalidInput("integrator", fmt::format("{} integrates the ordinary body only: the general body (SPEC "
                                                    "section 11) is integrated by taylor or dopri5 (or auto)",
@@ -242,8 +276,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
       NonlinearOptions adaptive = options.adaptive;
       if (options.progress) adaptive.progress = options.progress;
       NonlinearSummary summary;
-      const Integrator chosen =
-          options.integrator == Integrator::Auto ? choose_integrator(body, adaptive) : options.integrator;
+      const Integrator chosen = resolve_integrator(options.integrator, body, adaptive);
       if (chosen == Integrator::Taylor) {
         TaylorSummary taylor;
         detail::stream_taylor(body, initial, samples, adaptive, &taylor);

@@ -11,6 +11,7 @@
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "detail/integration.hpp"
+#include "detail/sampling.hpp"
 #include "detail/streams.hpp"
 
 namespace heavytop {
@@ -112,7 +113,7 @@ inline void strang(const Flows& f, State& x, double h) {
 constexpr double kP = 0.41449077179437573;
 constexpr double kQ = -0.65796308717750292;  // 1 - 4p
 
-inline void step(const Flows& f, State& x, double h, int order) {
+inline void splitting_step(const Flows& f, State& x, double h, int order) {
   if (order == 4) {
     strang(f, x, kP * h);
     strang(f, x, kP * h);
@@ -155,6 +156,77 @@ ConservedQuantities integrals(const Body& b, const State& x) {
           x.l1 * g1 + x.l2 * g2 + x.l3 * g3, x.l3};
 }
 
+// The splitting on its grid n h as a DenseStepper: advance_to(t) goes to the last grid point
+// at or before t (exact multiples of h on the grid), and its interpolation is one shorter
+// step on a copy from there (the grid itself is never shortened, so sampling leaves the
+// steps as they are).
+class GridStepper {
+ public:
+  using State = heavytop::State;
+
+  GridStepper(const Body& body, const RigidBodyState& rb0, const SplittingOptions& options,
+              SplittingSummary* summary)
+      : body_(body), flows_(body), h_(options.step), order_(options.order), strangs_(options.order == 4 ? 5 : 1),
+        summary_(summary), x_(to_state(body, rb0)) {
+    // Drift scales as NonlinearSummary's.
+    if (summary_) {
+      *summary_ = SplittingSummary{};
+      summary_->symmetric = flows_.symmetric;
+      scales_ = scales_of(body, rb0);
+      first_ = integrals(body, x_);
+    }
+  }
+
+  double time() const { return static_cast<double>(n_) * h_; }
+
+  void step() {
+    splitting_step(flows_, x_, h_, order_);
+    if (summary_) note_drift(*summary_, integrals(body_, x_), first_, scales_);
+    ++n_;
+  }
+
+  void advance_to(double t, const std::function<void(double)>& progress) {
+    const auto target = static_cast<std::size_t>(std::floor(t / h_ * (1.0 + 4e-16)));
+    while (n_ < target) {
+      step();
+      if (progress && n_ % 4096 == 0) progress(static_cast<double>(n_ - 1) * h_);
+    }
+  }
+
+  // The state at t >= time(), t < time() + h.
+  void interpolate(double t, State& y) {
+    const double rest = t - time();
+    y = x_;
+    if (rest > 1e-15 * std::max(h_, t)) {  // one shorter step, on a copy
+      splitting_step(flows_, y, rest, order_);
+      if (summary_) {
+        ++summary_->partial_steps;
+        summary_->kicks += 2 * strangs_;
+      }
+    }
+  }
+
+  // The summary's totals at the end of the run.
+  void finish() {
+    if (summary_) {
+      summary_->steps = n_;
+      summary_->kicks += 2 * strangs_ * n_;
+      summary_->final_time = static_cast<double>(n_) * h_;
+    }
+  }
+
+ private:
+  const Body& body_;
+  Flows flows_;
+  double h_;
+  int order_, strangs_;
+  SplittingSummary* summary_;
+  Scales scales_;
+  ConservedQuantities first_;
+  State x_;
+  std::size_t n_ = 0;  // x_ is the state at n_ h
+};
+
 }  // namespace
 
 bool SplittingOptions::IsValid(std::string* why) const {
@@ -171,10 +243,9 @@ std::string SplittingSummary::BriefReport() const {
 Trajectory simulate_splitting(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const SplittingOptions& options,
                               SplittingSummary* summary) {
-  validate_times(times);
-  Trajectory out;
-  detail::stream_splitting(body, initial, gather(times, out), options, summary);
-  return out;
+  return gathered(times, [&](const SampleStream& samples) {
+    detail::stream_splitting(body, initial, samples, options, summary);
+  });
 }
 
 void detail::stream_splitting(const Body& body, const InitialState& initial, const SampleStream& samples,
@@ -184,67 +255,20 @@ void detail::stream_splitting(const Body& body, const InitialState& initial, con
   validate(initial);
   validate(options);
   const double h = options.step;
-  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
+  const double horizon = samples.horizon();
   if (horizon / h > static_cast<double>(options.max_steps))
     throw InvalidInput("step", fmt::format("too small: t = {:.6g} s would take more than "
                                              "max_steps = {} steps",
                                              horizon, options.max_steps));
 
-  const Flows flows(body);
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
-  State x = to_state(body, rb0);
-  const ConservedQuantities initial_q = conserved_quantities(body, rb0);
-  const int strangs = options.order == 4 ? 5 : 1;
-
-  // Drift scales as NonlinearSummary's.
-  Scales scales;
-  ConservedQuantities first;
-  if (summary) {
-    *summary = SplittingSummary{};
-    summary->symmetric = flows.symmetric;
-    scales = scales_of(body, rb0);
-    first = integrals(body, x);
-  }
-
-  const std::size_t room = std::min(samples.count, samples.chunk);
-  Trajectory out;
-  out.reserve(room);
-  add_conserved_columns(out, room);
-
-  std::size_t n = 0;  // grid index: x is the state at n h
-  for (std::size_t i = 0; i < samples.count; ++i) {
-    const double t = samples.time(i);
-    // Grid points up to t (n h <= t, with exact multiples of h on the grid).
-    const auto target = static_cast<std::size_t>(std::floor(t / h * (1.0 + 4e-16)));
-    for (; n < target; ++n) {
-      step(flows, x, h, options.order);
-      if (summary) note_drift(*summary, integrals(body, x), first, scales);
-      if (options.progress && n % 4096 == 4095) options.progress(static_cast<double>(n) * h);
-    }
-    const double rest = t - static_cast<double>(n) * h;
-    RigidBodyState rb = rb0;
-    if (t > 0.0) {
-      State y = x;
-      if (rest > 1e-15 * std::max(h, t)) {  // one shorter step, on a copy
-        step(flows, y, rest, options.order);
-        if (summary) {
-          ++summary->partial_steps;
-          summary->kicks += 2 * strangs;
-        }
-      }
-      rb = to_rigid_body(body, y);
-    }
-    // At t = 0 the exact initial attitude.
-    push_angles(out, t, axis_angles_of(rb));
-    push_conserved(out, conserved_quantities(body, rb), initial_q);
-    maybe_flush(samples, out, i + 1 == samples.count);
-    if (options.progress) options.progress(t);
-  }
-  if (summary) {
-    summary->steps = n;
-    summary->kicks += 2 * strangs * n;
-    summary->final_time = static_cast<double>(n) * h;
-  }
+  GridStepper stepper(body, rb0, options, summary);
+  write_samples(stepper, body, rb0, conserved_quantities(body, rb0), false, samples, options.progress,
+                [&body](const State& y) {
+                  const RigidBodyState rb = to_rigid_body(body, y);
+                  return sample_of(rb, conserved_quantities(body, rb));
+                });
+  stepper.finish();
 }
 
 }  // namespace heavytop

@@ -55,15 +55,9 @@ bool batched(const SweepOptions& o, const Body& body) {
 }
 
 // One point's verdict with the integrator asked for (auto: choose_integrator's for a body
-// the batch does not take, i.e. dopri5). Taylor's max_tilt at a crossing is the crossing's
-// tilt itself (== max_tilt to rounding), hence `exceeded`, not a comparison.
+// the batch does not take, i.e. dopri5), through the one dispatch of simulate.hpp.
 bool sweep_tilt_verdict(const Body& body, const InitialState& state, const SweepOptions& o) {
-  const Integrator chosen = o.nonlinear_integrator == Integrator::Auto ? choose_integrator(body, o.integrator) : o.nonlinear_integrator;
-  if (chosen == Integrator::Taylor)
-    return !taylor_tilt_extremes(body, state, o.horizon, o.max_tilt, o.integrator).exceeded;
-  if (chosen == Integrator::Dop853)
-    return !dop853_tilt_extremes(body, state, o.horizon, o.max_tilt, o.integrator).exceeded;
-  return max_tilt(body, state, o.horizon, o.max_tilt, o.integrator) <= o.max_tilt;
+  return !tilt_extremes(o.nonlinear_integrator, body, state, o.horizon, o.max_tilt, o.integrator).exceeded;
 }
 
 struct SweepBatch {
@@ -168,8 +162,11 @@ bool SweepOptions::IsValid(std::string* why) const {
   };
   if (!(std::isfinite(horizon) && horizon > 0.0)) return fail("horizon: must be finite and > 0");
   if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI)) return fail("max_tilt: must be in (0, pi] rad");
-  if (nonlinear_integrator == Integrator::Splitting)
-    return fail("integrator: must be auto, taylor, dop853 or dopri5 (the splitting has no error control to judge a point by)");
+  if (nonlinear_integrator == Integrator::Splitting) {
+    if (why) *why = fmt::format("integrator: must be {} (the splitting has no error control to judge a point by)",
+                                integrator_names(", ", " or ", false));
+    return false;
+  }
   return integrator.IsValid(why);
 }
 

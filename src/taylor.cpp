@@ -15,6 +15,7 @@
 #include "heavytop/rigid_body.hpp"
 
 #include "detail/integration.hpp"
+#include "detail/sampling.hpp"
 #include "detail/streams.hpp"
 
 namespace heavytop {
@@ -507,10 +508,7 @@ class TaylorIntegrator {
   // One step from time(): the series at time(), its step, the state at its end. Afterwards
   // interpolate() covers [previous_time(), time()] from the same series.
   void step() {
-    if (steps_ >= max_steps_)
-      throw std::runtime_error(fmt::format(
-          "taylor: more than max_steps = {} integration steps before t = {:.6g} s (raise max_steps or "
-          "loosen rtol/atol)", max_steps_, t_));
+    if (steps_ >= max_steps_) fail("taylor", StepOutcome::MaxSteps, t_, max_steps_);
     normalise();
     for (int i = 0; i < N; ++i) jet_.c[0][i] = x_[i];
     for (int i = N; i < W; ++i) jet_.c[0][i] = 0.0;
@@ -530,9 +528,7 @@ class TaylorIntegrator {
     double h = std::min(std::pow(norm_pm1, -1.0 / (order_ - 1)), std::pow(norm_p, -1.0 / order_));
     const double left = horizon_ - t_;
     if (left > 0.0 && !(h < left)) h = left;  // never beyond the horizon (dense output inside)
-    if (!(t_ + h > t_) || !std::isfinite(h))
-      throw std::runtime_error(fmt::format(
-          "taylor: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t_));
+    if (!(t_ + h > t_) || !std::isfinite(h)) fail("taylor", StepOutcome::StepUnderflow, t_);
 
     // Dry friction: the step ends where its mode does (the series holds for that mode only).
     double event = -1.0;
@@ -552,8 +548,7 @@ class TaylorIntegrator {
       if (event >= 0.0) change_friction_mode();
     }
     if (!std::all_of(x_.begin(), x_.end(), [](double v) { return std::isfinite(v); }))
-      throw std::runtime_error(
-          fmt::format("taylor: the state stopped being finite at t = {:.6g} s", t_old_));
+      fail("taylor", StepOutcome::NotFinite, t_old_);
     if (summary_) monitor();
   }
 
@@ -658,41 +653,16 @@ class TaylorIntegrator {
 template <class System>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
               const NonlinearOptions& options, TaylorSummary* summary) {
-  const double horizon = samples.count == 0 ? 0.0 : samples.time(samples.count - 1);
+  using State = typename TaylorIntegrator<System>::State;
+  const double horizon = samples.horizon();
   TaylorIntegrator<System> integrator(body, System(body), System::state_of(rb0), horizon, options, summary);
-  const ConservedQuantities initial = System::conserved(body, rb0);
-
-  const std::size_t room = std::min(samples.count, samples.chunk);
-  Trajectory out;
-  out.reserve(room);
-  add_conserved_columns(out, room);
-  const std::size_t damping_column = out.extra.size();
-  if constexpr (System::kDamped) add_damping_columns(out, room, body.damping.driven);
-  const AxisAngles a0 = axis_angles_of(rb0);  // t = 0 from the input itself (SPEC section 2)
-  typename TaylorIntegrator<System>::State x = System::state_of(rb0);
-  for (std::size_t i = 0; i < samples.count; ++i) {
-    const double t = samples.time(i);
-    ConservedQuantities q = initial;
-    AxisAngles a = a0;
-    if (t > 0.0) {
-      advance_to(integrator, t, options.progress);
-      integrator.interpolate(t, x);
-      const RigidBodyState rb = System::rigid_body(x);
-      q = System::conserved(body, rb);
-      a = axis_angles_of(rb);
-    }
-    push_angles(out, t, a);
-    push_conserved(out, q, initial);
-    if constexpr (System::kDamped) {
-      out.extra[damping_column].second.push_back(x[System::kWork]);
-      out.extra[damping_column + 1].second.push_back(x[System::kVerticalLoss]);
-      out.extra[damping_column + 2].second.push_back(x[System::kAxialLoss]);
-      if (body.damping.driven)
-        out.extra[damping_column + 3].second.push_back(motor_torque(body.damping, x[6], (body.A - body.B) * x[4] * x[5]));
-    }
-    maybe_flush(samples, out, i + 1 == samples.count);
-    if (options.progress) options.progress(t);
-  }
+  write_samples(integrator, body, rb0, System::conserved(body, rb0), System::kDamped, samples, options.progress,
+                [&body](const State& x) {
+                  const RigidBodyState rb = System::rigid_body(x);
+                  SampleValues v = sample_of(rb, System::conserved(body, rb));
+                  if constexpr (System::kDamped) v.taken = {x[System::kWork], x[System::kVerticalLoss], x[System::kAxialLoss]};
+                  return v;
+                });
 }
 
 // ---- Events on the series ---------------------------------------------------------------------------
@@ -835,10 +805,9 @@ void detail::stream_taylor(const Body& body, const InitialState& initial, const 
 
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
                            const NonlinearOptions& options, TaylorSummary* summary) {
-  validate_times(times);
-  Trajectory out;
-  detail::stream_taylor(body, initial, gather(times, out), options, summary);
-  return out;
+  return gathered(times, [&](const SampleStream& samples) {
+    detail::stream_taylor(body, initial, samples, options, summary);
+  });
 }
 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,

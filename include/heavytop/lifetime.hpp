@@ -8,6 +8,7 @@
 
 #include "heavytop/body.hpp"
 #include "heavytop/nonlinear.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop {
@@ -20,6 +21,9 @@ struct LifetimeOptions {
   /// rad, the tilt from the upward vertical past which the top has fallen (in (0, pi]).
   double max_tilt = 1.0;
   NonlinearOptions integrator;  ///< the adaptive integrator's settings (its progress too)
+  /// Which integrator runs the body (any but the splitting, through simulate.hpp's one
+  /// dispatch); dopri5 by default, as the command line's `lifetime` has always run.
+  Integrator method = Integrator::Dopri5;
 
   /// True if every setting is in range; else false and a one-line "key: rule" in `why`
   /// (key "horizon", "max_tilt", or the integrator's).

@@ -45,35 +45,56 @@ std::optional<LinearModelKind> linear_kind(Model model);
 /// The Model of a linear model.
 Model model_of(LinearModelKind kind);
 
-/// How the `nonlinear` model is integrated. Adaptive, Taylor and Dop853 take their
+/// How the `nonlinear` model is integrated. Dopri5, Taylor and Dop853 take their
 /// tolerances from SimulateOptions::adaptive; docs/integrators.md compares them.
 enum class Integrator {
-  Adaptive,   ///< "dopri5": Dormand-Prince 5(4) with error control and dense output (nonlinear.hpp)
+  Dopri5,     ///< "dopri5": Dormand-Prince 5(4) with error control and dense output (nonlinear.hpp)
   Splitting,  ///< "splitting": fixed-step structure-preserving splitting (splitting.hpp)
   Taylor,     ///< "taylor": Taylor series, order and step from the tolerance (taylor.hpp)
   Dop853,     ///< "dop853": Dormand-Prince 8(5,3) with its 7th-order dense output (dop853.hpp)
   Auto,       ///< "auto": the fastest of the three above for the body and tolerance (choose_integrator)
+  Adaptive = Dopri5,  ///< dopri5's old name (also accepted as "adaptive")
 };
+/// Every integrator, in the order the command line lists them: auto, taylor, dop853, dopri5,
+/// splitting (the one table behind name(), integrator_from_name() and integrator_names()).
+inline constexpr std::array<Integrator, 5> kIntegrators = {Integrator::Auto, Integrator::Taylor, Integrator::Dop853,
+                                                           Integrator::Dopri5, Integrator::Splitting};
 /// "dopri5" | "splitting" | "taylor" | "dop853" | "auto".
 std::string_view name(Integrator integrator);
 /// The integrator called `name` ("adaptive" is dopri5's old name), or nullopt.
 std::optional<Integrator> integrator_from_name(std::string_view name);
+/// The names of kIntegrators in its order, joined by `separator` and the last two by `last`
+/// (e.g. "auto, taylor, dop853, dopri5 or splitting"); without the splitting when
+/// `with_splitting` is false (the analyses that judge a run by its error control).
+std::string integrator_names(std::string_view separator, std::string_view last, bool with_splitting = true);
 /// Auto picks the Taylor integrator when min(rtol, atol) is at most this (dimensionless), or
-/// when A != B, or for a general body; dopri5 (Adaptive) for a symmetric body above it
+/// when A != B, or for a general body; dopri5 (Dopri5) for a symmetric body above it
 /// (docs/integrators.md, "Choosing").
 inline constexpr double kAutoTaylorBelow = 1e-2;
-/// The integrator Auto stands for with these tolerances and this body (Taylor or Adaptive,
+/// The integrator Auto stands for with these tolerances and this body (Taylor or Dopri5,
 /// never Auto or Splitting); the rule and its measurements are in docs/integrators.md. A
 /// damped body (SPEC section 6) follows the same rule (the Taylor integrator holds its
 /// torques, taylor.hpp); a general body (SPEC section 11, general_body.hpp) gets Taylor, and a
-/// damped general body Adaptive (which refuses it: the general body is integrated undamped).
+/// damped general body Dopri5 (which refuses it: the general body is integrated undamped).
 Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances);
+
+/// The one dispatch of the integrators: the integrator that runs for `asked` with this body and
+/// these tolerances (Auto resolved by choose_integrator, every other one as asked).
+Integrator resolve_integrator(Integrator asked, const Body& body, const NonlinearOptions& tolerances);
+
+/// tilt_extremes() (nonlinear.hpp) by any error-controlled integrator (`integrator` resolved
+/// by resolve_integrator; the splitting is refused, key "integrator"): Dopri5's and Dop853's
+/// scans on their dense output, Taylor's on its series (taylor_tilt_extremes, whose stop is
+/// the crossing itself). `summary`, if set, receives the run's work (Dopri5 and Taylor).
+TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
+                           double stop_above, const NonlinearOptions& tolerances,
+                           NonlinearSummary* summary = nullptr);
 
 /// Settings of simulate(); each applies to the models named.
 struct SimulateOptions {
   LinearMethod method = LinearMethod::Analytic;  ///< first-order, body-fixed, linearized
   Integrator integrator = Integrator::Auto;      ///< nonlinear
-  NonlinearOptions adaptive;                     ///< nonlinear with Adaptive, Taylor, Dop853, Auto
+  NonlinearOptions adaptive;                     ///< nonlinear with Dopri5, Taylor, Dop853, Auto
   SplittingOptions splitting;                    ///< nonlinear with Integrator::Splitting
   /// Called with the simulated time (s) as the work proceeds, if set; may throw to stop it.
   std::function<void(double)> progress;
@@ -128,7 +149,7 @@ struct SimulationSummary {
 struct Simulation {
   Trajectory trajectory;      ///< every sample on Success; those computed before a Failure
   SimulationSummary summary;
-  /// The error-controlled integrator's own summary (nonlinear with Adaptive, Taylor, Dop853
+  /// The error-controlled integrator's own summary (nonlinear with Dopri5, Taylor, Dop853
   /// or Auto), for the JSON `summary` object.
   std::optional<NonlinearSummary> adaptive;
 };
@@ -159,7 +180,7 @@ SimulationSummary simulate_streaming(Model model, const Body& body, const Initia
 /// finite, >= 0, non-decreasing). Columns theta, phi, theta_rate, phi_rate for every model;
 /// the nonlinear integrators add the conserved quantities (nonlinear.hpp). A general body
 /// (SPEC section 11, is_general()) is integrated by general_body.hpp's dopri5, for Nonlinear with
-/// Integrator::Auto or Adaptive only (InvalidInput "integrator" otherwise, the body's key for
+/// Integrator::Auto, Dopri5 or Taylor only (InvalidInput "integrator" otherwise, the body's key for
 /// every other model, a "damping.*" key when damped). Throws
 /// InvalidInput for bad input (the body, the state, the options; LagrangeExact needs A = B;
 /// times beyond longest_meaningful_time()); a numerical failure, including a value that is

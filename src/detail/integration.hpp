@@ -1,8 +1,8 @@
 #pragma once
-// Private to the library: what the two integrators of the nonlinear model (nonlinear.cpp,
-// adaptive; splitting.cpp, fixed-step) share: option checking, the sample times, the drift
-// monitor's scales and update, the report's drift part, and the output columns (the same
-// columns for both, see simulate_splitting). lagrange_exact.cpp uses push_angles() alone.
+// Private to the library: what the integrators of the nonlinear model share: option checking,
+// the sample times, the drift monitor's scales and update, the report's drift part, the
+// stream of samples and the angle columns (sampling.hpp has the one sample loop and the
+// writer of the columns; lagrange_exact.cpp uses push_angles() alone).
 
 #include <algorithm>
 #include <cmath>
@@ -59,6 +59,27 @@ inline void validate_times(const std::vector<double>& times) {
   }
 }
 
+// ---- Outcomes ------------------------------------------------------------------------------------
+
+// How a run of an error-controlled integrator fails (heyoka's taylor_outcome): too many steps,
+// a step size lost in the rounding of t (the tolerance cannot be met), a state no longer finite.
+enum class StepOutcome { MaxSteps, StepUnderflow, NotFinite };
+
+// Throws the one-line failure of integrator `who` ("nonlinear", "taylor", "dop853") at t (s),
+// the one message formatter of every integrator; `max_steps` is the limit passed (MaxSteps).
+[[noreturn, gnu::cold]] inline void fail(const char* who, StepOutcome outcome, double t, std::size_t max_steps = 0) {
+  switch (outcome) {
+    case StepOutcome::MaxSteps:
+      throw std::runtime_error(fmt::format("{}: more than max_steps = {} integration steps before t = {:.6g} s "
+                                           "(raise max_steps or loosen rtol/atol)", who, max_steps, t));
+    case StepOutcome::StepUnderflow:
+      throw std::runtime_error(
+          fmt::format("{}: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", who, t));
+    case StepOutcome::NotFinite: break;
+  }
+  throw std::runtime_error(fmt::format("{}: the state stopped being finite at t = {:.6g} s", who, t));
+}
+
 // ---- One step of Odeint's controlled dopri5 (nonlinear.cpp, general_body.cpp) ----------------
 
 // The most rejections in a row before a step is given up as lost in rounding.
@@ -73,27 +94,22 @@ template <class Controlled, class System, class State>
 void controlled_step(Controlled& controlled, System& system, const State& x_old, const State& dxdt_old, double& t,
                      State& x, State& dxdt, double& dt, std::size_t& attempts, std::size_t max_steps,
                      NonlinearSummary* summary) {
-  auto underflow = [&] {
-    return std::runtime_error(fmt::format(
-        "nonlinear: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", t));
-  };
   for (int rejections = 0;;) {
-    if (attempts >= max_steps)
-      throw std::runtime_error(fmt::format("nonlinear: more than max_steps = {} integration steps before t = {:.6g} "
-                                           "s (raise max_steps or loosen rtol/atol)", max_steps, t));
-    if (!(t + dt > t)) throw underflow();  // lost in the rounding of t (or not a number)
+    if (attempts >= max_steps) fail("nonlinear", StepOutcome::MaxSteps, t, max_steps);
+    // Lost in the rounding of t (or not a number).
+    if (!(t + dt > t)) fail("nonlinear", StepOutcome::StepUnderflow, t);
     ++attempts;
     const double t_before = t;
     const auto result = controlled.try_step(system, x_old, dxdt_old, t, x, dxdt, dt);
     if (summary) summary->rhs_evaluations += 6;  // FSAL: six new stages per attempt
     if (result == boost::numeric::odeint::success) {
       if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); }))
-        throw std::runtime_error(fmt::format("nonlinear: the state stopped being finite at t = {:.6g} s", t_before));
+        fail("nonlinear", StepOutcome::NotFinite, t_before);
       return;
     }
     if (summary) ++summary->rejected_steps;
     // A long run of rejections: rounding, not the method, limits the error.
-    if (++rejections > kMaxConsecutiveRejections) throw underflow();
+    if (++rejections > kMaxConsecutiveRejections) fail("nonlinear", StepOutcome::StepUnderflow, t);
   }
 }
 
@@ -178,6 +194,9 @@ struct SampleStream {
   std::function<double(std::size_t)> time;
   std::size_t chunk = static_cast<std::size_t>(-1);
   std::function<void(Trajectory&)> flush;
+
+  // s, the last sample's time (0 without samples): the run's horizon.
+  double horizon() const { return count == 0 ? 0.0 : time(count - 1); }
 };
 
 // A stream over `times` that gathers every sample into `out`.
@@ -187,6 +206,16 @@ inline SampleStream gather(const std::vector<double>& times, Trajectory& out) {
             if (out.size() == 0) out = std::move(part);
             else out.append(part);
           }};
+}
+
+// simulate_*(times) from its streaming twin: `stream(samples)` with every sample at `times`
+// (validated: key "times") gathered into one trajectory.
+template <class Stream>
+Trajectory gathered(const std::vector<double>& times, const Stream& stream) {
+  validate_times(times);
+  Trajectory out;
+  stream(gather(times, out));
+  return out;
 }
 
 // Empties every column of `out`, keeping the extra columns' names.
@@ -250,28 +279,6 @@ inline void push_angles(Trajectory& out, double t, const AxisAngles& a) {
   out.phi_rate.push_back(a.phi_rate);
 }
 
-// The extra columns of simulate_nonlinear and simulate_splitting, empty, room for n samples.
-inline void add_conserved_columns(Trajectory& out, std::size_t n) {
-  const char* names[] = {"energy", "vertical_momentum", "axial_momentum",
-                         "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
-  for (const char* name : names) {
-    out.extra.emplace_back(name, std::vector<double>{});
-    out.extra.back().second.reserve(n);
-  }
-}
-
-// One sample of those columns: q, then q minus its value at t = 0.
-inline void push_conserved(Trajectory& out, const ConservedQuantities& q,
-                           const ConservedQuantities& initial) {
-  const double values[] = {q.energy,
-                           q.vertical_momentum,
-                           q.axial_momentum,
-                           q.energy - initial.energy,
-                           q.vertical_momentum - initial.vertical_momentum,
-                           q.axial_momentum - initial.axial_momentum};
-  for (std::size_t i = 0; i < 6; ++i) out.extra[i].second.push_back(values[i]);
-}
-
 // ---- Damped bodies (SPEC section 6; nonlinear.cpp's dopri5, taylor.cpp) ----------------------------
 //
 // The axial torque tau_z depends on a mode: sliding in the direction `mode` = +-1 of w3
@@ -299,17 +306,6 @@ inline double next_friction_mode(const Damping& d, double mode, double gyroscopi
 // gyroscopic torque (N m) and its own loads (d_a w3 + tau0 sign(w3)).
 inline double motor_torque(const Damping& d, double w3, double gyroscopic) {
   return -gyroscopic + d.axial * w3 + d.friction * (w3 > 0.0 ? 1.0 : w3 < 0.0 ? -1.0 : 0.0);
-}
-
-// The damped body's extra columns: what its torques took away (each the balance of a
-// conserved quantity: energy_drift + dissipated_work = 0, and so on), and the motor's torque.
-inline void add_damping_columns(Trajectory& out, std::size_t n, bool driven) {
-  std::vector<const char*> names = {"dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"};
-  if (driven) names.push_back("motor_torque");
-  for (const char* name : names) {
-    out.extra.emplace_back(name, std::vector<double>{});
-    out.extra.back().second.reserve(n);
-  }
 }
 
 }  // namespace heavytop::detail
