@@ -87,10 +87,11 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
       }
     } catch (const InvalidInput&) {
       throw;
-    } catch (const std::exception&) {
-      a.verdict = AnswerVerdict::StaysUpForHorizon;  // the run failed: nothing is claimed
-      a.why = AnswerCase::OutlivesHorizon;
+    } catch (const std::exception& e) {
+      a.verdict = AnswerVerdict::StaysUpForHorizon;  // the run failed: nothing is claimed, the words say so
+      a.why = AnswerCase::RunStopped;
       a.horizon = life_options.horizon.value_or(0.0);
+      a.stopped = e.what();
     }
     return a;
   }

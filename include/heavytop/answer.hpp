@@ -36,6 +36,7 @@ enum class AnswerCase {
   NotFallen,           ///< not proven stable and it did not fall in the run
   FallsDamped,         ///< damped: the lifetime's run falls
   OutlivesHorizon,     ///< damped: it did not fall within the lifetime's horizon
+  RunStopped,          ///< damped: its motion could not be computed (Answer::stopped says why); nothing claimed
 };
 
 /// Settings of answer_question().
@@ -79,13 +80,17 @@ struct Answer {
   bool hanging = false;             ///< the centre of mass is below the pivot (length < 0)
   /// rad/s, for a damped body: the critical spin its spin decays to (lifetime's), nullopt else.
   std::optional<double> critical_spin;
+  /// Why a damped body's run stopped before deciding (AnswerCase::RunStopped; the integrator's
+  /// one-line failure, e.g. too many steps for damping this strong), empty otherwise.
+  std::string stopped;
 };
 
 /// The answer for `body` started in `initial`, from the Lyapunov analysis at the spin and the
 /// wander (what `stability` computes, passed in so it is computed once) and, where they do not
 /// decide, a nonlinear run: tilt_extremes over options.horizon for the conservative body,
 /// lifetime() for a damped one. Throws InvalidInput for bad options; never throws for a failed
-/// run (the answer is then "stays up for the horizon" with max_tilt empty).
+/// run (the answer is then "stays up for the horizon" with max_tilt empty; for a damped body
+/// AnswerCase::RunStopped, its words saying that nothing was decided and why).
 Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
                        const Wander& wander, const AnswerOptions& options = {});
 

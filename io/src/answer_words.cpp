@@ -37,6 +37,12 @@ std::string start_words(const Answer& a) {
 }  // namespace
 
 std::string answer_advice(const Answer& a) {
+  if (a.why == AnswerCase::RunStopped) {  // no lifetime run: what the conservative analysis says
+    if (!a.min_spin) return "Without damping no spin is proven to hold it up.";
+    return a.falls_below_min_spin
+               ? fmt::format("Without damping it needs at least {} to stay up (the critical spin).", spin_words(*a.min_spin))
+               : fmt::format("Without damping it is proven stable from {} up.", spin_words(*a.min_spin));
+  }
   if (a.damped) {
     if (a.critical_spin && *a.critical_spin > 0.0)
       return fmt::format("Without damping it needs at least {} to stay up (the critical spin).",
@@ -61,6 +67,7 @@ std::string answer_headline(const Answer& a) {
     case AnswerCase::BalancedUnstable:
       return fmt::format("Stays up for the {} computed, but only because it starts exactly upright.",
                          time_words(a.horizon));
+    case AnswerCase::RunStopped: return "Not decided.";
     case AnswerCase::NotFallen:
     case AnswerCase::OutlivesHorizon: break;
   }
@@ -99,9 +106,16 @@ std::string answer_reason(const Answer& a) {
       return s + ", but its stability is not proven, so it may still fall later.";
     }
     case AnswerCase::FallsDamped:
+      // "slows" only where the spin did slow (axial damping, friction); transverse damping alone
+      // leaves it and makes the axis fall (Kelvin-Tait-Chetaev).
       return fmt::format("Damping {} its spin of {}; at t = {} its axis passes {}, spinning at {}.",
-                         a.spin != 0.0 ? "slows" : "acts on", spin_words(a.spin),
-                         time_words(a.falls_at.value_or(0.0)), fall, spin_words(a.fall_spin.value_or(0.0)));
+                         std::abs(a.fall_spin.value_or(a.spin)) < std::abs(a.spin) ? "slows" : "acts on",
+                         spin_words(a.spin), time_words(a.falls_at.value_or(0.0)), fall,
+                         spin_words(a.fall_spin.value_or(0.0)));
+    case AnswerCase::RunStopped:
+      return fmt::format("With its damping, spinning at {}, the motion of {} could not be computed far enough to "
+                         "say whether it falls ({}).",
+                         spin_words(a.spin), body, a.stopped);
     case AnswerCase::OutlivesHorizon: break;
   }
   std::string s = fmt::format("With its damping, spinning at {}, {} did not tilt past {} within the {} computed",
