@@ -129,9 +129,9 @@ function compareTrajectory(page, native, tol) {
   return out;
 }
 
-// The explorer inside a report: the report's folder only, no console error.
-async function checkReport(browser) {
-  const folder = path.resolve(reportDir);
+// A page that lets requests inside `folder` (and data: URLs) through and aborts and records every
+// other one, and records console errors and uncaught exceptions.
+async function guardedPage(browser, folder) {
   const page = await browser.newPage();
   const foreign = [], errors = [];
   await page.setRequestInterception(true);
@@ -143,6 +143,13 @@ async function checkReport(browser) {
   });
   page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
   page.on("pageerror", (err) => errors.push(String(err)));
+  return { page, foreign, errors };
+}
+
+// The explorer inside a report: the report's folder only, no console error.
+async function checkReport(browser) {
+  const folder = path.resolve(reportDir);
+  const { page, foreign, errors } = await guardedPage(browser, folder);
   await page.goto("file://" + path.join(folder, "report.html"), { waitUntil: "load" });
   await page.waitForSelector("#scene-canvas", { timeout: 20000 });
   const t0 = Date.now();
@@ -202,17 +209,7 @@ async function checkReport(browser) {
            `--user-data-dir=${fs.mkdtempSync(path.join(os.tmpdir(), "heavytop-chromium-"))}`],
     defaultViewport: { width: 1280, height: 1000 },
   });
-  const page = await browser.newPage();
-  const foreign = [], errors = [];
-  await page.setRequestInterception(true);
-  page.on("request", (req) => {
-    const url = req.url();
-    const local = url.startsWith("file://") && decodeURIComponent(new URL(url).pathname).startsWith(folder + path.sep);
-    if (local || url.startsWith("data:")) req.continue();
-    else { foreign.push(url); req.abort(); }
-  });
-  page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
-  page.on("pageerror", (err) => errors.push(String(err)));
+  const { page, foreign, errors } = await guardedPage(browser, folder);
 
   const t0 = Date.now();
   await page.goto("file://" + path.resolve(pageFile), { waitUntil: "load" });

@@ -529,7 +529,8 @@
     for (const id of ["map-x0", "map-x1", "map-y0", "map-y1", "map-n", "map-model"]) $(id).addEventListener("change", drawMap);
     $("map").addEventListener("click", mapClick);
     showVerdict();
-    setTimeout(() => { drawMotion(); drawView(); drawMap(); document.body.dataset.ready = "1"; }, 0);
+    // Ready even if a drawing fails (its error is then the page's, for a person and for the tests).
+    setTimeout(() => { try { drawMotion(); drawView(); drawMap(); } finally { document.body.dataset.ready = "1"; } }, 0);
   }
 
   // ---- Benchmarks (browser clock; medians) ------------------------------------------------------
