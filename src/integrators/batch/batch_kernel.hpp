@@ -9,9 +9,9 @@
 // unbatched integrator computes for its body (see batch.hpp); what is not elementwise (the
 // step size's pow, the events' sign tests and roots, the tilt's atan2) is done lane by lane in
 // scalar code. Builtins instead of <cmath>'s inline wrappers, and no templates from outside
-// this namespace: see detail/batch.hpp.
+// this namespace: see integrators/batch/batch.hpp.
 
-#include "batch.hpp"  // src/detail/batch.hpp: nothing else, see there
+#include "integrators/batch/batch.hpp"  // the kernel interface: nothing else, see there
 
 namespace heavytop::detail::HEAVYTOP_BATCH_NS {
 namespace {

@@ -14,9 +14,9 @@
 #include "heavytop/general_body.hpp"
 #include "heavytop/rigid_body.hpp"
 
-#include "detail/integration.hpp"
-#include "detail/sampling.hpp"
-#include "detail/streams.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/sampling.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 
