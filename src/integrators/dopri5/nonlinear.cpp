@@ -14,10 +14,10 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
-#include "detail/integration.hpp"
-#include "detail/sampling.hpp"
-#include "detail/tilt_scan.hpp"
-#include "detail/streams.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/sampling.hpp"
+#include "integrators/tilt_scan.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 

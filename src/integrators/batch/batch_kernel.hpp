@@ -3,15 +3,15 @@
 // set), HEAVYTOP_BATCH_LANES (doubles per vector) and HEAVYTOP_BATCH_ENTRY (the entry point's
 // name). No include guard: one inclusion per translation unit.
 //
-// It is taylor.cpp's TaylorIntegrator::step() and scan_tilt() with every double of one body
+// It is taylor/integrator.hpp's TaylorIntegrator::step() and taylor.cpp's scan_tilt() with every double of one body
 // widened to a vector of W bodies (structure of arrays: c[n][i][lane]). Every expression keeps
 // the unbatched one's operations and their order, so each lane computes exactly what the
 // unbatched integrator computes for its body (see batch.hpp); what is not elementwise (the
 // step size's pow, the events' sign tests and roots, the tilt's atan2) is done lane by lane in
 // scalar code. Builtins instead of <cmath>'s inline wrappers, and no templates from outside
-// this namespace: see detail/batch.hpp.
+// this namespace: see integrators/batch/batch.hpp.
 
-#include "batch.hpp"  // src/detail/batch.hpp: nothing else, see there
+#include "integrators/batch/batch.hpp"  // the kernel interface: nothing else, see there
 
 namespace heavytop::detail::HEAVYTOP_BATCH_NS {
 namespace {
@@ -46,7 +46,7 @@ struct Work {
   V e1, e2, e3, ka, kb, c_over_a;
 };
 
-// taylor.cpp's Plain::coefficients / SpinFactored::coefficients, on W lanes.
+// taylor/recurrence.hpp's Plain::coefficients / SpinFactored::coefficients, on W lanes.
 template <bool Symmetric>
 inline void coefficients(Work& w, int p) {
   if constexpr (Symmetric) {

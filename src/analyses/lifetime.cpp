@@ -7,7 +7,7 @@
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 namespace {
