@@ -60,7 +60,7 @@ void BM_LagrangeExactSample(benchmark::State& state) {
   state.counters["samples_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["series"] = top.fourier_series ? 1.0 : 0.0;
-  state.counters["series_terms"] = top.detail.series_terms;
+  state.counters["series_terms"] = top.series_terms;
 }
 BENCHMARK(BM_LagrangeExactSample)
     ->ArgNames({"t0_exp", "series", "near_vertical"})
