@@ -123,7 +123,7 @@ TEST_P(AgreesWithNonlinear, Over100NutationPeriods) {
   if (!std::isfinite(horizon)) horizon = std::abs(phi_rate) > 0.0 ? 100.0 * 2.0 * kPi / std::abs(phi_rate) : 100.0;
   horizon = std::min(horizon, 3000.0);
   const std::vector<double> times = sample_times(horizon, 4001);
-  NonlinearOptions tight;
+  Tolerances tight;
   tight.rtol = tight.atol = 1e-14;
   const Trajectory reference = simulate_nonlinear(c.body, c.state, times, tight);
   const Trajectory exact = simulate_lagrange_exact(c.body, c.state, times);
@@ -191,7 +191,7 @@ TEST(LagrangeExact, NearSeparatrixTheIntegratorConvergesToIt) {
   const std::vector<double> times = sample_times(20.0 * top.nutation_period, 201);
   std::vector<double> errors;
   for (double tol : {1e-12, 1e-13, 1e-14}) {
-    NonlinearOptions o;
+    Tolerances o;
     o.rtol = o.atol = tol;
     const Trajectory nl = simulate_nonlinear(body, s, times, o);
     double e = 0.0;
