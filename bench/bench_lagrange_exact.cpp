@@ -177,7 +177,7 @@ int write_work_precision(const std::string& path) {
     const double exact_s = wall_time([&] { exact = simulate_lagrange_exact(body, s, times); });
     std::fprintf(f, "%g,lagrange-exact,0,%.6g,0,0,0\n", periods, exact_s);
     for (int e = 4; e <= 13; ++e) {
-      NonlinearOptions o;
+      Tolerances o;
       o.rtol = o.atol = std::pow(10.0, -e);
       NonlinearSummary summary;
       Trajectory tr;
