@@ -62,10 +62,10 @@ bool batchable(const Body& body) noexcept;
 /// ("taylor: ...") as the unbatched call on max_steps, a step lost in the rounding of t, or a
 /// state that stops being finite (the whole call then fails).
 void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltExtremes> out);
 void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltExtremes> out, BatchIsa isa);
 
 /// The sweep's question alone: did the tilt pass stop_above, and when.
@@ -80,10 +80,10 @@ struct TiltVerdict {
 /// less work; the crossing is found by the same test on the same series). Same units, keys and
 /// failures as batch_tilt_extremes().
 void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltVerdict> out);
 void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltVerdict> out, BatchIsa isa);
 
 }  // namespace heavytop
