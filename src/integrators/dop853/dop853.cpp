@@ -233,14 +233,13 @@ struct TiltOf {
 // the crossing of stop_above located by TOMS 748.
 TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
                        const Tolerances& options) {
-  TiltExtremes e;
-  e.min_tilt = e.max_tilt = TiltOf(x0).tilt();
-  e.exceeded = e.max_tilt > stop_above;
-  if (e.exceeded || horizon == 0.0) return e;
+  const TiltRecord start = start_tilt_scan(TiltOf(x0).tilt(), stop_above);
+  if (start.e.exceeded || horizon == 0.0) return start.e;
   Dop853 integrator(body, x0, horizon, options, nullptr);
-  return detail::scan_tilt_extremes(
-      integrator, x0, horizon, stop_above, [](const State& x) { return TiltOf(x).tilt(); },
-      [](const State& x) { return TiltOf(x).rate(x); }, [](const State& x) { return x[6]; });
+  auto tilt = [](const State& x) { return TiltOf(x).tilt(); };
+  auto rate = [](const State& x) { return TiltOf(x).rate(x); };
+  return scan_tilt_extremes(integrator, horizon, start, DenseOutputEvents<State, decltype(tilt), decltype(rate)>(x0, tilt, rate),
+                            [](const State& x) { return x[6]; });
 }
 
 }  // namespace

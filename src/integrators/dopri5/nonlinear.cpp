@@ -105,18 +105,16 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
                        const Tolerances& options, NonlinearSummary* summary) {
   using State = StateOf<Damped>;
   const State x0 = to_state<State>(rb0);
-  TiltExtremes e;
   if (summary) *summary = NonlinearSummary{};
-  const double tilt0 = tilt_of(x0);
-  e.min_tilt = e.max_tilt = tilt0;
-  e.exceeded = tilt0 > stop_above;
-  e.spin_at_end = x0[kW3];  // w.k at t = 0, where the scan ends when it is past stop_above already
-  if (e.exceeded || horizon == 0.0) return e;
+  TiltRecord start = start_tilt_scan(tilt_of(x0), stop_above);
+  start.e.spin_at_end = x0[kW3];  // w.k at t = 0, where the scan ends when it is past stop_above already
+  if (start.e.exceeded || horizon == 0.0) return start.e;
 
   Integrator<Symmetric, Damped> integrator(body, rb0, horizon, options, summary);
-  return detail::scan_tilt_extremes(
-      integrator, x0, horizon, stop_above, [](const State& x) { return tilt_of(x); },
-      [](const State& x) { return tilt_cos_rate(x); }, [](const State& x) { return x[kW3]; }, options.progress);
+  auto tilt = [](const State& x) { return tilt_of(x); };
+  auto rate = [](const State& x) { return tilt_cos_rate(x); };
+  return scan_tilt_extremes(integrator, horizon, start, DenseOutputEvents<State, decltype(tilt), decltype(rate)>(x0, tilt, rate),
+                            [](const State& x) { return x[kW3]; }, options.progress);
 }
 
 }  // namespace
