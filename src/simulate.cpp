@@ -52,13 +52,6 @@ void check_finite(Model model, const Trajectory& part) {
   }
 }
 
-template <class Summary>
-void copy_drifts(const Summary& from, SimulationSummary& to) {
-  to.max_relative_energy_drift = from.max_relative_energy_drift;
-  to.max_relative_vertical_momentum_drift = from.max_relative_vertical_momentum_drift;
-  to.max_relative_axial_momentum_drift = from.max_relative_axial_momentum_drift;
-}
-
 }  // namespace
 
 std::string_view name(Model model) { return kModelNames[static_cast<std::size_t>(model)]; }
@@ -169,9 +162,9 @@ bool SimulateOptions::IsValid(std::string* why) const {
 std::string SimulationSummary::BriefReport() const {
   std::string line = fmt::format("{} ({}): {} samples", name(model), solver, samples);
   if (steps) line += fmt::format(", {} steps ({} rejected), {} evaluations", steps, rejected_steps, rhs_evaluations);
-  if (max_relative_energy_drift)
-    line += fmt::format(", relative drift: energy {:.2e}, vertical momentum {:.2e}", *max_relative_energy_drift,
-                        max_relative_vertical_momentum_drift.value_or(0.0));
+  if (drifts)
+    line += fmt::format(", relative drift: energy {:.2e}, vertical momentum {:.2e}", drifts->max_relative_energy_drift,
+                        drifts->max_relative_vertical_momentum_drift);
   if (!ok()) line += ": FAILED: " + message;
   return line;
 }
@@ -266,7 +259,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
       detail::stream_splitting(body, initial, samples, splitting, &summary);
       s.steps = summary.steps + summary.partial_steps;
       s.rhs_evaluations = summary.kicks;
-      copy_drifts(summary, s);
+      s.drifts = static_cast<const Drifts&>(summary);
       if (summary.max_relative_energy_drift > kSplittingEnergyWarning)
         s.warnings.push_back(fmt::format(
             "the splitting's relative energy error reached {:.3g}, above {:g}: the step {:g} s is too large for "
@@ -299,7 +292,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
       s.steps = summary.steps;
       s.rejected_steps = summary.rejected_steps;
       s.rhs_evaluations = summary.rhs_evaluations;
-      copy_drifts(summary, s);
+      s.drifts = static_cast<const Drifts&>(summary);
       if (adaptive_out) *adaptive_out = summary;
     }
   } catch (const std::runtime_error& e) {

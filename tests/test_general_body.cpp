@@ -273,7 +273,7 @@ TEST_P(GeneralBodyIntegrators, AgreeWithAnIndependentBulirschStoerIntegrationTo1
   for (double theta : run.trajectory.theta) range = std::max(range, std::abs(theta - run.trajectory.theta[0]));
   EXPECT_GT(range, 0.05);
   // Its energy column is conserved (E with m g c.gamma).
-  EXPECT_LT(*run.summary.max_relative_energy_drift, 1e-11);
+  EXPECT_LT(run.summary.drifts->max_relative_energy_drift, 1e-11);
 }
 
 TEST(GeneralBody, RefusesABodyThatCannotExist) {

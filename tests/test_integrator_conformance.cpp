@@ -104,9 +104,10 @@ TEST_P(Conformance, FirstSampleIsTheInputState) {
   EXPECT_NEAR(t.phi_rate[0], x0.phi_rate0, 1e-14);
   for (const char* column : {"energy_drift", "vertical_momentum_drift", "axial_momentum_drift"})
     EXPECT_EQ(named(t, column)[0], 0.0) << column;
-  if (!GetParam().body.damping.conservative())
+  if (!GetParam().body.damping.conservative()) {
     for (const char* column : {"dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"})
       EXPECT_EQ(named(t, column)[0], 0.0) << column;
+  }
 }
 
 // Streamed in chunks of 1, 7 and 64 samples, the trajectory is the gathered one, bit for bit,
@@ -213,7 +214,7 @@ TEST_P(Conformance, SummaryCountsAddUp) {
   const SimulationSummary& m = s.summary;
   EXPECT_EQ(m.samples, 51u);
   EXPECT_GT(m.steps, 0u);
-  ASSERT_TRUE(m.max_relative_energy_drift.has_value());
+  ASSERT_TRUE(m.drifts.has_value());
   const bool friction = GetParam().body.damping.friction > 0.0;
   switch (GetParam().integrator) {
     case Integrator::Dopri5:  // one evaluation at the start, six new stages an attempt (FSAL), one a friction event

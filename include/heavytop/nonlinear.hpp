@@ -50,20 +50,23 @@ void validate(const Tolerances& options);
 /// The former name of Tolerances, for code written against heavytop 0.1.
 using NonlinearOptions [[deprecated("heavytop::NonlinearOptions is now heavytop::Tolerances")]] = Tolerances;
 
-/// What one run of the integrator did.
-struct NonlinearSummary {
+/// How far the first integrals drifted over one run, in every integrator's summary: the largest
+/// |Q(t) - Q(0)| / scale over every accepted step (every grid point for the splitting), with
+/// E_scale = T(0) + |m g R| (J) and L_scale = sqrt(2 max(A, B, C) E_scale) (kg m^2/s); for the
+/// general body m g |c| and the largest eigenvalue of its inertia tensor in their place.
+struct Drifts {
+  double max_relative_energy_drift = 0.0;             ///< of E (J/J)
+  double max_relative_vertical_momentum_drift = 0.0;  ///< of L_zeta, over L_scale
+  double max_relative_axial_momentum_drift = 0.0;     ///< of C w3, over L_scale (conserved only when A == B)
+};
+
+/// What one run of the integrator did (and its Drifts).
+struct NonlinearSummary : Drifts {
   std::size_t steps = 0;            ///< accepted steps
   std::size_t rejected_steps = 0;   ///< steps rejected by the error control and retried
   std::size_t rhs_evaluations = 0;  ///< evaluations of the equations of motion
   double final_time = 0.0;          ///< s, end of the last accepted step (>= the last time asked)
   bool symmetric = false;           ///< true if A == B exactly (a cheaper right-hand side was used)
-  /// max |E(t) - E(0)| / E_scale over every accepted step, E_scale = T(0) + |m g R| (J/J).
-  double max_relative_energy_drift = 0.0;
-  /// max |L_zeta(t) - L_zeta(0)| / L_scale over every accepted step,
-  /// L_scale = sqrt(2 max(A, B, C) E_scale) (an upper bound of |I w|).
-  double max_relative_vertical_momentum_drift = 0.0;
-  /// max |C w3(t) - C w3(0)| / L_scale over every accepted step (conserved only when A == B).
-  double max_relative_axial_momentum_drift = 0.0;
   /// max | |q| - 1 | of the attitude quaternion before its renormalisation at each step end.
   double max_quaternion_norm_error = 0.0;
 

@@ -130,11 +130,9 @@ struct SimulationSummary {
   std::size_t steps = 0;             ///< integrator steps (0 for closed forms)
   std::size_t rejected_steps = 0;    ///< steps rejected by the error control
   std::size_t rhs_evaluations = 0;   ///< evaluations of the equations of motion (kicks for the splitting)
-  /// Relative drifts of E, L_zeta and C w3 over the run (NonlinearSummary's definitions);
-  /// nullopt for models that do not monitor them.
-  std::optional<double> max_relative_energy_drift;
-  std::optional<double> max_relative_vertical_momentum_drift;
-  std::optional<double> max_relative_axial_momentum_drift;
+  /// Relative drifts of E, L_zeta and C w3 over the run (nonlinear.hpp's Drifts); nullopt for
+  /// models that do not monitor them.
+  std::optional<Drifts> drifts;
 
   /// One line each: what a reader should know although the run succeeded (e.g. the
   /// splitting's energy error above kSplittingEnergyWarning).

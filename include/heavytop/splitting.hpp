@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "heavytop/body.hpp"
+#include "heavytop/nonlinear.hpp"  // Drifts
 #include "heavytop/state.hpp"
 
 namespace heavytop {
@@ -47,19 +48,13 @@ struct SplittingOptions {
 /// Throws InvalidInput (key "step", "order" or "max_steps") unless options.IsValid().
 void validate(const SplittingOptions& options);
 
-/// What one run of the splitting integrator did.
-struct SplittingSummary {
+/// What one run of the splitting integrator did (and its Drifts, over the grid).
+struct SplittingSummary : Drifts {
   std::size_t steps = 0;          ///< grid steps of size h
   std::size_t partial_steps = 0;  ///< shorter steps (on copies) to land on sample times
   std::size_t kicks = 0;          ///< gravity kicks (torque evaluations), the unit of work
   double final_time = 0.0;        ///< s, the last grid point reached
   bool symmetric = false;         ///< A == B exactly: the free flow is exact, L_3 conserved
-  /// max |E(t_n) - E(0)| / E_scale over the grid, E_scale = T(0) + |m g R| (as NonlinearSummary).
-  double max_relative_energy_drift = 0.0;
-  /// max |L_zeta(t_n) - L_zeta(0)| / L_scale over the grid, L_scale = sqrt(2 max(A,B,C) E_scale).
-  double max_relative_vertical_momentum_drift = 0.0;
-  /// max |C w3(t_n) - C w3(0)| / L_scale over the grid (conserved only when A == B).
-  double max_relative_axial_momentum_drift = 0.0;
 
   /// One line for people: steps, kicks, drifts.
   std::string BriefReport() const;

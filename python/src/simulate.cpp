@@ -18,16 +18,15 @@ using namespace pybind11::literals;
 
 namespace {
 
-py::object optional_number(const std::optional<double>& x) { return x ? py::object(py::float_(*x)) : py::none(); }
-
 py::dict summary_dict(const SimulationSummary& s) {
+  auto drift = [&s](double Drifts::*field) { return s.drifts ? py::object(py::float_((*s.drifts).*field)) : py::none(); };
   return py::dict("model"_a = std::string(name(s.model)), "solver"_a = s.solver,
                   "termination"_a = s.ok() ? "success" : "failure", "message"_a = s.message,
                   "samples"_a = s.samples, "steps"_a = s.steps, "rejected_steps"_a = s.rejected_steps,
                   "rhs_evaluations"_a = s.rhs_evaluations,
-                  "max_relative_energy_drift"_a = optional_number(s.max_relative_energy_drift),
-                  "max_relative_vertical_momentum_drift"_a = optional_number(s.max_relative_vertical_momentum_drift),
-                  "max_relative_axial_momentum_drift"_a = optional_number(s.max_relative_axial_momentum_drift),
+                  "max_relative_energy_drift"_a = drift(&Drifts::max_relative_energy_drift),
+                  "max_relative_vertical_momentum_drift"_a = drift(&Drifts::max_relative_vertical_momentum_drift),
+                  "max_relative_axial_momentum_drift"_a = drift(&Drifts::max_relative_axial_momentum_drift),
                   "report"_a = s.BriefReport());
 }
 

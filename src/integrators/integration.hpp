@@ -140,10 +140,8 @@ Scales general_scales(const Body& body, const RigidBodyState& x0);
 // general body is integrated without SPEC section 6's torques (general_body.cpp).
 void refuse_damped_general(const Body& body);
 
-// Raises the summary's max_relative_*_drift to those of q against `initial`
-// (NonlinearSummary and SplittingSummary name them alike).
-template <class Summary>
-inline void note_drift(Summary& s, const ConservedQuantities& q, const ConservedQuantities& initial,
+// Raises the drifts (of a NonlinearSummary or SplittingSummary) to those of q against `initial`.
+inline void note_drift(Drifts& s, const ConservedQuantities& q, const ConservedQuantities& initial,
                        const Scales& scales) {
   s.max_relative_energy_drift =
       std::max(s.max_relative_energy_drift, std::abs(q.energy - initial.energy) / scales.energy);

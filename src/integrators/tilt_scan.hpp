@@ -1,8 +1,20 @@
 #pragma once
-// Private to the library: the scan of tilt_extremes() on any integrator with a continuous
-// extension (nonlinear.cpp's dopri5, dop853.cpp): the tilt's extrema at the roots of
-// d(k_zeta)/dt inside a step, and the first crossing of stop_above, both located by TOMS 748
-// on the dense output.
+// Private to the library: the one scan of tilt_extremes() for every integrator of the nonlinear
+// model (dopri5, the general body's, DOP853, Taylor), and the events it looks for in a step.
+//
+// The contract (nonlinear.hpp's tilt_extremes): the tilt's extrema over [0, horizon], each
+// located inside its step (a root of d(k_zeta)/dt), and the scan's end at the first crossing of
+// stop_above (located inside its step to 1e-15 of the step), with the spin there.
+//
+// How a stepper finds a step's events is its capability: DenseOutputEvents (below) looks for
+// them on the continuous extension by TOMS 748 (dopri5, DOP853); the Taylor integrator finds
+// them as roots of the step's own series (taylor.cpp's SeriesEvents). Either notes what it
+// finds through `note` and returns the crossing's time, or -1 if the step has none.
+//
+// What is noted at a crossing still differs by capability: the dense output notes the first
+// point it sees past stop_above (an extremum or the step's end; max_tilt is then that point's
+// tilt, > stop_above), the series notes the crossing itself (max_tilt = stop_above to the
+// root's tolerance). Making them one changes lifetime's largest_tilt in the recorded runs.
 
 #include <algorithm>
 #include <cmath>
@@ -16,27 +28,94 @@
 
 namespace heavytop::detail {
 
-// Scans [0, horizon] from x0 (tilt(x0) <= stop_above, horizon > 0). `integrator` has step(),
-// time(), previous_time() and interpolate(t, x); tilt(x) is the tilt (rad), rate(x) is
-// d(k_zeta)/dt, spin(x) is w.k (rad/s). `progress`, if set, gets the time every
-// kStepsPerProgress steps.
-template <class Stepper, class State, class Tilt, class Rate, class Spin>
-TiltExtremes scan_tilt_extremes(Stepper& integrator, const State& x0, double horizon, double stop_above, Tilt tilt,
-                                Rate rate, Spin spin, const std::function<void(double)>& progress = {}) {
+// The extremes so far: note(t, tilt) keeps the smallest and largest tilt and their times and
+// says whether `tilt` is past stop_above.
+struct TiltRecord {
   TiltExtremes e;
-  e.min_tilt = e.max_tilt = tilt(x0);
-  auto note = [&](double t, const State& x) {
-    const double now = tilt(x);
-    if (now < e.min_tilt) e.min_tilt = now, e.t_min = t;
-    if (now > e.max_tilt) e.max_tilt = now, e.t_max = t;
-    return now > stop_above;
-  };
-  State y;
-  // The first time in [t0, t_hi] the tilt passes stop_above (it is below at t0): the scan's end.
-  auto stop_at_crossing = [&](double t0, double t_hi) {
+  double stop_above;
+  bool note(double t, double tilt) {
+    if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
+    if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
+    return tilt > stop_above;
+  }
+};
+
+// The scan's start: the tilt at t = 0, and the scan's result already if it is over there
+// (the start past stop_above, or no horizon): then no stepper need be built.
+inline TiltRecord start_tilt_scan(double tilt0, double stop_above) {
+  TiltRecord r{{}, stop_above};
+  r.e.min_tilt = r.e.max_tilt = tilt0;
+  r.e.exceeded = tilt0 > stop_above;
+  return r;
+}
+
+// The one loop: steps `stepper` (step(), time(), previous_time(), interpolate(t, x)) over
+// [0, horizon] from `record` (start_tilt_scan's), each step's events found by
+// events(stepper, t0, t1, record) (the crossing's time, or -1); spin(x) is w.k (rad/s) for
+// spin_at_end. `progress`, if set, gets the time every kStepsPerProgress steps.
+template <class Stepper, class Events, class Spin>
+TiltExtremes scan_tilt_extremes(Stepper& stepper, double horizon, TiltRecord record, Events&& events, Spin spin,
+                                const std::function<void(double)>& progress = {}) {
+  typename Stepper::State y;
+  for (std::size_t steps = 1; stepper.time() < horizon; ++steps) {
+    stepper.step();
+    if (progress && steps % kStepsPerProgress == 0) progress(std::min(stepper.time(), horizon));
+    const double crossing =
+        events(stepper, stepper.previous_time(), std::min(stepper.time(), horizon), record);
+    if (crossing >= 0.0) {
+      stepper.interpolate(crossing, y);
+      record.e.exceeded = true;
+      record.e.t_end = crossing;
+      record.e.spin_at_end = spin(y);
+      return record.e;
+    }
+  }
+  record.e.t_end = horizon;
+  stepper.interpolate(std::min(stepper.time(), horizon), y);
+  record.e.spin_at_end = spin(y);
+  return record.e;
+}
+
+// A step's events on the continuous extension: a sign change of d(k_zeta)/dt between the
+// step's ends is an extremum (its time to ~1e-12 of the step by TOMS 748; the tilt's error is
+// quadratic in it), noted, then the step's end; the first of them past stop_above ends the
+// scan at the crossing before it (TOMS 748 to 1e-15 of the width). tilt(x) is the tilt (rad),
+// rate(x) is d(k_zeta)/dt (1/s).
+template <class State, class Tilt, class Rate>
+class DenseOutputEvents {
+ public:
+  DenseOutputEvents(const State& x0, Tilt tilt, Rate rate) : tilt_(tilt), rate_(rate), rate_old_(rate(x0)) {}
+
+  template <class Stepper>
+  double operator()(Stepper& stepper, double t0, double t1, TiltRecord& record) {
+    stepper.interpolate(t1, x_);
+    const double rate_new = rate_(x_);
+    if ((rate_old_ < 0.0 && rate_new > 0.0) || (rate_old_ > 0.0 && rate_new < 0.0)) {
+      auto rate_at = [&](double t) {
+        stepper.interpolate(t, y_);
+        return rate_(y_);
+      };
+      const double width = t1 - t0;
+      std::uintmax_t iterations = 60;
+      const auto bracket = boost::math::tools::toms748_solve(
+          rate_at, t0, t1, rate_old_, rate_new,
+          [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
+      const double tr = 0.5 * (bracket.first + bracket.second);
+      stepper.interpolate(tr, y_);
+      if (record.note(tr, tilt_(y_))) return crossing(stepper, t0, tr, record.stop_above);
+    }
+    if (record.note(t1, tilt_(x_))) return crossing(stepper, t0, t1, record.stop_above);
+    rate_old_ = rate_new;
+    return -1.0;
+  }
+
+ private:
+  // The first time in [t0, t_hi] the tilt passes stop_above (it is below at t0).
+  template <class Stepper>
+  double crossing(Stepper& stepper, double t0, double t_hi, double stop_above) {
     auto excess = [&](double t) {
-      integrator.interpolate(t, y);
-      return tilt(y) - stop_above;
+      stepper.interpolate(t, y_);
+      return tilt_(y_) - stop_above;
     };
     const double below = excess(t0), above = excess(t_hi);
     double t_cross = t0;
@@ -48,44 +127,13 @@ TiltExtremes scan_tilt_extremes(Stepper& integrator, const State& x0, double hor
                     [width](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * width; }, iterations)
                     .second;
     }
-    integrator.interpolate(t_cross, y);
-    e.exceeded = true;
-    e.t_end = t_cross;
-    e.spin_at_end = spin(y);
-    return e;
-  };
-  double rate_old = rate(x0);
-  State x;
-  for (std::size_t steps = 1; integrator.time() < horizon; ++steps) {
-    integrator.step();
-    if (progress && steps % kStepsPerProgress == 0) progress(std::min(integrator.time(), horizon));
-    const double t0 = integrator.previous_time();
-    const double t1 = std::min(integrator.time(), horizon);
-    integrator.interpolate(t1, x);
-    const double rate_new = rate(x);
-    // A sign change of d(k_zeta)/dt inside the step is an extremum of the tilt: find it on
-    // the dense output (its time to ~1e-12 of the step; the tilt error is quadratic in it).
-    if ((rate_old < 0.0 && rate_new > 0.0) || (rate_old > 0.0 && rate_new < 0.0)) {
-      auto rate_at = [&](double t) {
-        integrator.interpolate(t, y);
-        return rate(y);
-      };
-      const double width = t1 - t0;
-      std::uintmax_t iterations = 60;
-      const auto bracket = boost::math::tools::toms748_solve(
-          rate_at, t0, t1, rate_old, rate_new,
-          [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
-      const double tr = 0.5 * (bracket.first + bracket.second);
-      integrator.interpolate(tr, y);
-      if (note(tr, y)) return stop_at_crossing(t0, tr);
-    }
-    if (note(t1, x)) return stop_at_crossing(t0, t1);
-    rate_old = rate_new;
+    return t_cross;
   }
-  e.t_end = horizon;
-  integrator.interpolate(std::min(integrator.time(), horizon), x);
-  e.spin_at_end = spin(x);
-  return e;
-}
+
+  Tilt tilt_;
+  Rate rate_;
+  double rate_old_;
+  State x_{}, y_{};
+};
 
 }  // namespace heavytop::detail

@@ -13,6 +13,7 @@
 
 #include "integrators/dop853/dop853_tableau.hpp"
 #include "integrators/integration.hpp"
+#include "integrators/monitor.hpp"
 #include "integrators/sampling.hpp"
 #include "integrators/tilt_scan.hpp"
 #include "integrators/streams.hpp"
@@ -36,16 +37,11 @@ class Dop853 {
   Dop853(const Body& body, const State& x0, double horizon, const Tolerances& options,
          NonlinearSummary* summary)
       : body_(body), system_{body}, rtol_(options.rtol), atol_(options.atol), horizon_(horizon),
-        max_steps_(options.max_steps), summary_(summary), y_(x0) {
+        max_steps_(options.max_steps), summary_(summary), monitor_(summary), y_(x0) {
     system_(y_, k_[0], 0.0);
     evaluations_ = 1;
     h_ = initial_step();
-    if (summary_) {
-      *summary_ = NonlinearSummary{};
-      summary_->symmetric = body.A == body.B;
-      scales_ = scales_of(body, from_vector(x0));
-      initial_ = conserved(x0);
-    }
+    if (monitor_) monitor_.start(body.A == body.B, scales_of(body, from_vector(x0)), conserved(x0));
   }
 
   double time() const { return t_; }
@@ -89,10 +85,8 @@ class Dop853 {
       h_ = h / std::min(1.0 / 0.333, fac11 / 0.9);
     }
     if (summary_) {
-      ++summary_->steps;
-      summary_->final_time = t_;
       summary_->rhs_evaluations = evaluations_;
-      note_drift(*summary_, conserved(y_), initial_, scales_);
+      monitor_.note_step(t_, conserved(y_));
     }
   }
 
@@ -198,15 +192,9 @@ class Dop853 {
     return h;
   }
 
+  // q and its rate k_[0] back onto |q| = 1 (renormalise_quaternion), the step's first stage kept.
   void normalise() {
-    const double norm = std::sqrt(y_[0] * y_[0] + y_[1] * y_[1] + y_[2] * y_[2] + y_[3] * y_[3]);
-    if (summary_)
-      summary_->max_quaternion_norm_error = std::max(summary_->max_quaternion_norm_error, std::abs(norm - 1.0));
-    // q' is linear in q and w' depends on q's direction only: scale q and its rate alike.
-    for (int i = 0; i < 4; ++i) {
-      y_[i] /= norm;
-      k_[0][i] /= norm;
-    }
+    monitor_.note_norm(renormalise_quaternion(y_, k_[0]));
     k_old_ = k_[0];
   }
 
@@ -217,9 +205,8 @@ class Dop853 {
   double rtol_, atol_, horizon_;
   std::size_t max_steps_;
   NonlinearSummary* summary_;
+  StepMonitor<NonlinearSummary> monitor_;
   std::size_t attempts_ = 0, evaluations_ = 0;
-  Scales scales_;
-  ConservedQuantities initial_;
   State y_, y_old_{}, y_new_{}, k_old_{};
   std::array<State, tab::kDenseStages> k_{};
   std::array<State, 7> f_{};
@@ -246,14 +233,13 @@ struct TiltOf {
 // the crossing of stop_above located by TOMS 748.
 TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
                        const Tolerances& options) {
-  TiltExtremes e;
-  e.min_tilt = e.max_tilt = TiltOf(x0).tilt();
-  e.exceeded = e.max_tilt > stop_above;
-  if (e.exceeded || horizon == 0.0) return e;
+  const TiltRecord start = start_tilt_scan(TiltOf(x0).tilt(), stop_above);
+  if (start.e.exceeded || horizon == 0.0) return start.e;
   Dop853 integrator(body, x0, horizon, options, nullptr);
-  return detail::scan_tilt_extremes(
-      integrator, x0, horizon, stop_above, [](const State& x) { return TiltOf(x).tilt(); },
-      [](const State& x) { return TiltOf(x).rate(x); }, [](const State& x) { return x[6]; });
+  auto tilt = [](const State& x) { return TiltOf(x).tilt(); };
+  auto rate = [](const State& x) { return TiltOf(x).rate(x); };
+  return scan_tilt_extremes(integrator, horizon, start, DenseOutputEvents<State, decltype(tilt), decltype(rate)>(x0, tilt, rate),
+                            [](const State& x) { return x[6]; });
 }
 
 }  // namespace

@@ -6,11 +6,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
-#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
+#include "integrators/dopri5/driver.hpp"
 #include "integrators/integration.hpp"
+#include "integrators/monitor.hpp"
 #include "integrators/sampling.hpp"
 #include "integrators/streams.hpp"
 
@@ -85,7 +85,6 @@ ConservedQuantities general_conserved_quantities(const Body& body, const RigidBo
 
 namespace {
 
-namespace odeint = boost::numeric::odeint;
 using State = RigidBodyVector;
 
 void check_general(const Body& body, const Tolerances& options) {
@@ -94,81 +93,27 @@ void check_general(const Body& body, const Tolerances& options) {
   refuse_damped_general(body);
 }
 
-// Dormand-Prince 5(4) with its continuous extension, one accepted step at a time (the pattern
-// of nonlinear.cpp's Integrator, without its spin-factored variables and damping).
-class GeneralIntegrator {
- public:
+// The general body's plain state (q, body-axes w: rigid_body.hpp's vector) for the dopri5
+// driver (driver.hpp), conservative only (SPEC section 11).
+struct GeneralVariables {
   using State = heavytop::State;
-  using Stepper = odeint::runge_kutta_dopri5<State>;
-  using Controlled = odeint::controlled_runge_kutta<Stepper>;
+  using Equations = GeneralRigidBodySystem;
+  static constexpr bool kSymmetric = false, kDamped = false;
 
-  GeneralIntegrator(const Body& body, const RigidBodyState& x0, double horizon, const Tolerances& options,
-                    NonlinearSummary* summary)
-      : body_(body), system_(body), controlled_(Controlled::error_checker_type(options.atol, options.rtol)),
-        max_steps_(options.max_steps), summary_(summary), x_(to_vector(x0)) {
-    system_(x_, dxdt_, 0.0);
-    dt_ = initial_step(options, horizon);
-    if (summary_) {
-      *summary_ = NonlinearSummary{};
-      summary_->symmetric = false;
-      summary_->rhs_evaluations = 1;
-      scales_ = general_scales(body, x0);
-      initial_ = general_conserved_quantities(body, x0);
-    }
-  }
-
-  double time() const { return t_; }
-
-  void step() {
-    commit();
-    x_old_ = x_;
-    dxdt_old_ = dxdt_;
-    t_old_ = t_;
-    controlled_step(controlled_, system_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_, attempts_, max_steps_, summary_);
-    if (summary_) {
-      ++summary_->steps;
-      summary_->final_time = t_;
-      note_drift(*summary_, general_conserved_quantities(body_, from_vector(x_)), initial_, scales_);
-    }
-  }
-
-  // The state at t in [previous step's start, time()] from the continuous extension.
-  void interpolate(double t, State& out) const {
-    if (t == t_) {
-      out = x_;
-      return;
-    }
-    controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, x_, dxdt_, t_);
-  }
-
- private:
-  double initial_step(const Tolerances& o, double horizon) const {
-    return first_step_guess(x_, dxdt_, o, horizon);
-  }
-
+  static Equations equations(const Body& body) { return Equations(body); }
   // Back onto |q| = 1 before each step (the quaternion's rate scales with it).
-  void commit() {
-    const double norm = std::sqrt(x_[0] * x_[0] + x_[1] * x_[1] + x_[2] * x_[2] + x_[3] * x_[3]);
-    if (summary_)
-      summary_->max_quaternion_norm_error = std::max(summary_->max_quaternion_norm_error, std::abs(norm - 1.0));
-    for (int i = 0; i < 4; ++i) {
-      x_[i] /= norm;
-      dxdt_[i] /= norm;
-    }
+  static double project(State& x, State& dxdt) { return renormalise_quaternion(x, dxdt); }
+  static State state_of(const RigidBodyState& rb0) { return to_vector(rb0); }
+  static Scales scales(const Body& body, const RigidBodyState& rb0, const State&) { return general_scales(body, rb0); }
+  static ConservedQuantities initial(const Body& body, const RigidBodyState& rb0, const State&) {
+    return general_conserved_quantities(body, rb0);
   }
-
-  const Body& body_;
-  GeneralRigidBodySystem system_;
-  Controlled controlled_;
-  std::size_t max_steps_;
-  NonlinearSummary* summary_;
-  std::size_t attempts_ = 0;
-  Scales scales_;
-  ConservedQuantities initial_;
-  State x_, dxdt_{}, x_old_{}, dxdt_old_{};
-  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+  static ConservedQuantities conserved(const Body& body, const State& x) {
+    return general_conserved_quantities(body, from_vector(x));
+  }
 };
 
+using GeneralIntegrator = Dopri5Driver<GeneralVariables>;
 
 }  // namespace
 

@@ -11,6 +11,7 @@
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "integrators/integration.hpp"
+#include "integrators/monitor.hpp"
 #include "integrators/sampling.hpp"
 #include "integrators/streams.hpp"
 
@@ -167,22 +168,17 @@ class GridStepper {
   GridStepper(const Body& body, const RigidBodyState& rb0, const SplittingOptions& options,
               SplittingSummary* summary)
       : body_(body), flows_(body), h_(options.step), order_(options.order), strangs_(options.order == 4 ? 5 : 1),
-        summary_(summary), x_(to_state(body, rb0)) {
+        summary_(summary), monitor_(summary), x_(to_state(body, rb0)) {
     // Drift scales as NonlinearSummary's.
-    if (summary_) {
-      *summary_ = SplittingSummary{};
-      summary_->symmetric = flows_.symmetric;
-      scales_ = scales_of(body, rb0);
-      first_ = integrals(body, x_);
-    }
+    if (monitor_) monitor_.start(flows_.symmetric, scales_of(body, rb0), integrals(body, x_));
   }
 
   double time() const { return static_cast<double>(n_) * h_; }
 
   void step() {
     splitting_step(flows_, x_, h_, order_);
-    if (summary_) note_drift(*summary_, integrals(body_, x_), first_, scales_);
     ++n_;
+    if (monitor_) monitor_.note_step(time(), integrals(body_, x_));
   }
 
   void advance_to(double t, const std::function<void(double)>& progress) {
@@ -206,13 +202,9 @@ class GridStepper {
     }
   }
 
-  // The summary's totals at the end of the run.
+  // The summary's totals at the end of the run (the monitor counted the steps).
   void finish() {
-    if (summary_) {
-      summary_->steps = n_;
-      summary_->kicks += 2 * strangs_ * n_;
-      summary_->final_time = static_cast<double>(n_) * h_;
-    }
+    if (summary_) summary_->kicks += 2 * strangs_ * n_;
   }
 
  private:
@@ -221,8 +213,7 @@ class GridStepper {
   double h_;
   int order_, strangs_;
   SplittingSummary* summary_;
-  Scales scales_;
-  ConservedQuantities first_;
+  StepMonitor<SplittingSummary> monitor_;
   State x_;
   std::size_t n_ = 0;  // x_ is the state at n_ h
 };

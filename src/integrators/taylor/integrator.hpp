@@ -14,6 +14,7 @@
 #include "heavytop/taylor.hpp"
 
 #include "integrators/integration.hpp"
+#include "integrators/monitor.hpp"
 #include "integrators/taylor/recurrence.hpp"
 #include "integrators/taylor/series.hpp"
 #include "integrators/taylor/variables.hpp"
@@ -39,6 +40,7 @@ class TaylorIntegrator {
         horizon_(horizon),
         max_steps_(options.max_steps),
         summary_(summary),
+        monitor_(summary ? &summary->work : nullptr),
         x_(x0) {
     if constexpr (System::kDamped)
       system_.mode = initial_friction_mode(body.damping, x0[6], (body.A - body.B) * x0[4] * x0[5]);
@@ -47,9 +49,8 @@ class TaylorIntegrator {
       summary_->order = order_;
       summary_->variables = System::kVariables;
       summary_->damped = System::kDamped;
-      summary_->work.symmetric = System::kVariables == TaylorVariables::SpinFactored;
-      scales_ = System::scales(body, System::rigid_body(x0));
-      initial_ = conserved(x0);
+      monitor_.start(System::kVariables == TaylorVariables::SpinFactored, System::scales(body, System::rigid_body(x0)),
+                     conserved(x0));
     }
   }
 
@@ -154,13 +155,7 @@ class TaylorIntegrator {
   }
 
   // |q| = 1 before each step: the vertical's formula is quadratic only on the unit sphere.
-  void normalise() {
-    const double norm = std::sqrt(x_[0] * x_[0] + x_[1] * x_[1] + x_[2] * x_[2] + x_[3] * x_[3]);
-    if (summary_)
-      summary_->work.max_quaternion_norm_error =
-          std::max(summary_->work.max_quaternion_norm_error, std::abs(norm - 1.0));
-    for (int i = 0; i < 4; ++i) x_[i] /= norm;
-  }
+  void normalise() { monitor_.note_norm(renormalise_quaternion(x_)); }
 
   ConservedQuantities conserved(const State& x) const {
     if constexpr (System::kVariables == TaylorVariables::General) {
@@ -181,11 +176,8 @@ class TaylorIntegrator {
   }
 
   void monitor() {
-    NonlinearSummary& w = summary_->work;
-    ++w.steps;
-    w.rhs_evaluations += static_cast<std::size_t>(order_);
-    w.final_time = t_;
-    note_drift(w, conserved(x_), initial_, scales_);
+    summary_->work.rhs_evaluations += static_cast<std::size_t>(order_);
+    monitor_.note_step(t_, conserved(x_));
   }
 
   const Body& body_;
@@ -194,9 +186,8 @@ class TaylorIntegrator {
   double rtol_, atol_, horizon_;
   std::size_t max_steps_;
   TaylorSummary* summary_;
+  StepMonitor<NonlinearSummary> monitor_;  // summary_->work
   std::size_t steps_ = 0;
-  Scales scales_;
-  ConservedQuantities initial_;
   Jet jet_{};
   Gamma gamma_;
   State x_;

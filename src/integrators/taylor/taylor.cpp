@@ -18,6 +18,7 @@
 #include "integrators/sampling.hpp"
 #include "integrators/streams.hpp"
 #include "integrators/taylor/integrator.hpp"
+#include "integrators/tilt_scan.hpp"
 
 namespace heavytop {
 
@@ -58,77 +59,85 @@ double polynomial_root(const Coefficients& s, int p, double a, double b, double 
   return root([&](double tau) { return horner(s, p, tau); }, a, b, fa, fb, h);
 }
 
+// A step's events on its own series, the Taylor integrator's capability in the one tilt scan
+// (tilt_scan.hpp): the series of d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 and of
+// k_zeta - cos(stop_above) = qw^2 - qx^2 - qy^2 + qz^2 - cos(stop_above) to order p (gamma to
+// order p first: the recurrence stopped at p - 1), their sign changes in 8 pieces of the step,
+// each root by TOMS 748 on the polynomial. An extremum before the crossing is noted, then the
+// crossing itself, which ends the scan; without one, the step's end.
 template <class System>
-TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
-                       const Tolerances& options, TaylorSummary* summary) {
+class SeriesEvents {
+ public:
   using Integrator = TaylorIntegrator<System>;
-  TiltExtremes e;
-  if (summary) *summary = TaylorSummary{};
-  const auto x0 = System::state_of(rb0);
-  const double tilt0 = tilt_of(x0);
-  e.min_tilt = e.max_tilt = tilt0;
-  e.exceeded = tilt0 > stop_above;
-  if (e.exceeded || horizon == 0.0) return e;
 
-  Integrator integrator(body, System(body), x0, horizon, options, summary);
-  const int p = integrator.order();
-  const bool threshold = stop_above < 3.141592653589793;  // a tilt above pi cannot be reached
-  const double cos_stop = std::cos(stop_above);
-  auto note = [&](double t, double tilt) {
-    if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
-    if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
-  };
+  explicit SeriesEvents(double stop_above)
+      : threshold_(stop_above < 3.141592653589793),  // a tilt above pi cannot be reached
+        cos_stop_(std::cos(stop_above)) {}
 
-  Coefficients rate{}, kz{};
-  Gamma g;
-  typename Integrator::State y;
-  constexpr int kPieces = 8;
-  while (integrator.time() < horizon) {
-    integrator.step();
-    const double t0 = integrator.previous_time(), h = integrator.time() - t0;
+  double operator()(Integrator& integrator, double t0, double /*t1*/, TiltRecord& record) {
+    const int p = integrator.order();
+    const double h = integrator.time() - t0;
     const auto& x = integrator.series();
-    // The series of d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 and of k_zeta = qw^2 - qx^2 - qy^2 + qz^2,
-    // to order p (gamma to order p first: the recurrence stopped at p - 1).
-    g = integrator.gamma();
+    g_ = integrator.gamma();
     std::array<Coefficients, 4> q;
     for (int i = 0; i < 4; ++i) q[i] = series_of(x, i, p);
     const Coefficients u1 = series_of(x, System::kU1, p), u2 = series_of(x, System::kU2, p);
-    g.g1[p] = 2.0 * (cauchy(q[1], q[3], p) - cauchy(q[0], q[2], p));
-    g.g2[p] = 2.0 * (cauchy(q[2], q[3], p) + cauchy(q[0], q[1], p));
+    g_.g1[p] = 2.0 * (cauchy(q[1], q[3], p) - cauchy(q[0], q[2], p));
+    g_.g2[p] = 2.0 * (cauchy(q[2], q[3], p) + cauchy(q[0], q[1], p));
     for (int n = 0; n <= p; ++n) {
-      rate[n] = cauchy(g.g1, u2, n) - cauchy(g.g2, u1, n);
-      kz[n] = cauchy(q[0], q[0], n) - cauchy(q[1], q[1], n) - cauchy(q[2], q[2], n) + cauchy(q[3], q[3], n);
+      rate_[n] = cauchy(g_.g1, u2, n) - cauchy(g_.g2, u1, n);
+      kz_[n] = cauchy(q[0], q[0], n) - cauchy(q[1], q[1], n) - cauchy(q[2], q[2], n) + cauchy(q[3], q[3], n);
     }
-    kz[0] -= cos_stop;  // k_zeta - cos(stop): negative once the tilt passes stop_above
+    kz_[0] -= cos_stop_;  // k_zeta - cos(stop): negative once the tilt passes stop_above
 
-    double a = 0.0, ra = horner(rate, p, 0.0), ka = horner(kz, p, 0.0);
+    constexpr int kPieces = 8;
+    double a = 0.0, ra = horner(rate_, p, 0.0), ka = horner(kz_, p, 0.0);
     for (int k = 1; k <= kPieces; ++k) {
-      const double b = h * k / kPieces, rb = horner(rate, p, b), kb = horner(kz, p, b);
+      const double b = h * k / kPieces, rb = horner(rate_, p, b), kb = horner(kz_, p, b);
       double crossing = -1.0;
-      if (threshold && ka >= 0.0 && kb < 0.0) crossing = polynomial_root(kz, p, a, b, ka, kb, h);
+      if (threshold_ && ka >= 0.0 && kb < 0.0) crossing = polynomial_root(kz_, p, a, b, ka, kb, h);
       if ((ra < 0.0 && rb > 0.0) || (ra > 0.0 && rb < 0.0)) {
-        const double extremum = polynomial_root(rate, p, a, b, ra, rb, h);
+        const double extremum = polynomial_root(rate_, p, a, b, ra, rb, h);
         if (crossing < 0.0 || extremum < crossing) {
-          integrator.interpolate(t0 + extremum, y);
-          note(t0 + extremum, tilt_of(y));
+          integrator.interpolate(t0 + extremum, y_);
+          record.note(t0 + extremum, tilt_of(y_));
         }
       }
       if (crossing >= 0.0) {
-        integrator.interpolate(t0 + crossing, y);
-        note(t0 + crossing, tilt_of(y));
-        e.exceeded = true;
-        e.t_end = t0 + crossing;
-        if constexpr (System::kDamped) e.spin_at_end = y[6];
-        return e;
+        integrator.interpolate(t0 + crossing, y_);
+        record.note(t0 + crossing, tilt_of(y_));
+        return t0 + crossing;
       }
       a = b, ra = rb, ka = kb;
     }
-    integrator.interpolate(integrator.time(), y);
-    note(integrator.time(), tilt_of(y));
+    integrator.interpolate(integrator.time(), y_);
+    record.note(integrator.time(), tilt_of(y_));
+    return -1.0;
   }
-  e.t_end = horizon;
-  if constexpr (System::kDamped) e.spin_at_end = y[6];
-  return e;
+
+ private:
+  bool threshold_;
+  double cos_stop_;
+  Coefficients rate_{}, kz_{};
+  Gamma g_;
+  typename Integrator::State y_;
+};
+
+template <class System>
+TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
+                       const Tolerances& options, TaylorSummary* summary) {
+  if (summary) *summary = TaylorSummary{};
+  const auto x0 = System::state_of(rb0);
+  const TiltRecord start = start_tilt_scan(tilt_of(x0), stop_above);
+  if (start.e.exceeded || horizon == 0.0) return start.e;
+
+  TaylorIntegrator<System> integrator(body, System(body), x0, horizon, options, summary);
+  // spin_at_end: the integrated spin of a damped body; 0 for the conservative sets (and for the
+  // batch, which is bit-identical to this scan).
+  return scan_tilt_extremes(integrator, horizon, start, SeriesEvents<System>(stop_above), [](const auto& x) {
+    if constexpr (System::kDamped) return x[6];
+    return 0.0;
+  });
 }
 
 // The set of variables for a body; a damped general body is refused (SPEC section 11 is
