@@ -133,11 +133,18 @@ std::vector<bool> heavytop_default(const Map& m) {
 }
 
 #ifdef HEAVYTOP_PEERS_DECIDED
+std::string decided_by;  // the last run's count of points per deciding tolerance
 std::vector<bool> heavytop_decided(const Map& m) {
   std::vector<DecidedVerdict> v(m.bodies.size());
   decided_tilt_verdicts(m.bodies, m.starts, kHorizon, kMaxTilt, NonlinearOptions{}, v);
   std::vector<bool> out(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) out[i] = !v[i].exceeded;
+  std::size_t closed = 0, loose = 0, tight = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    out[i] = !v[i].exceeded;
+    (v[i].tolerance == 0.0 ? closed : v[i].tolerance == kLooseTolerance ? loose : tight)++;
+  }
+  decided_by = "closed form " + std::to_string(closed) + ", loose " + std::to_string(loose) + ", 1e-12 " +
+               std::to_string(tight);
   return out;
 }
 #endif
@@ -197,7 +204,8 @@ int main(int argc, char** argv) {
     std::vector<Way> ways;
     ways.push_back({"heavytop default", "1e-12", [&] { return heavytop_default(m); }, {}, {}});
 #ifdef HEAVYTOP_PEERS_DECIDED
-    ways.push_back({"heavytop decided", "per point", [&] { return heavytop_decided(m); }, {}, {}});
+    heavytop_decided(m);
+    ways.push_back({"heavytop decided", "per point (" + decided_by + ")", [&] { return heavytop_decided(m); }, {}, {}});
 #endif
     if (gsl_tight) ways.push_back({"GSL rk8pd loop", "1e-12", [&] { return gsl_map(m, 1e-12); }, {}, {}});
     if (loosest > 0.0) {

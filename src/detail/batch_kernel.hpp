@@ -155,6 +155,17 @@ inline V horner(const V* s, int stride, int p, V tau) {
   return v;
 }
 
+// One series (stride V apart) at the pieces' points at[0..kPieces], their Horner chains
+// interleaved (each chain's operations as horner()'s, so the same bits; one chain alone waits
+// on each multiply-add in turn).
+inline void horner_pieces(const V* s, int stride, int p, const V* at, V* out) {
+  V v[kPieces + 1];
+  for (int k = 0; k <= kPieces; ++k) v[k] = s[p * stride];
+  for (int n = p - 1; n >= 0; --n)
+    for (int k = 0; k <= kPieces; ++k) v[k] = v[k] * at[k] + s[n * stride];
+  for (int k = 0; k <= kPieces; ++k) out[k] = v[k];
+}
+
 // taylor.cpp's tilt_of: atan2(|k_horizontal|, k_zeta) of a (not normalised) quaternion.
 inline double tilt_of(double qw, double qx, double qy, double qz) {
   const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
@@ -276,7 +287,13 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
       t_new[l] = (h == left) ? horizon : t_old[l] + h;
       ++steps[l];
     }
-    for (int i = 0; i < 7; ++i) w.x[i] = horner(&w.c[0][i], 7, p, tau);
+    {  // the seven variables' Horner chains interleaved (each as horner(): the same bits)
+      V v[7];
+      for (int i = 0; i < 7; ++i) v[i] = w.c[p][i];
+      for (int n = p - 1; n >= 0; --n)
+        for (int i = 0; i < 7; ++i) v[i] = v[i] * tau + w.c[n][i];
+      for (int i = 0; i < 7; ++i) w.x[i] = v[i];
+    }
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;
       t[l] = t_new[l];
@@ -313,13 +330,9 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
     for (int l = 0; l < W; ++l) h[l] = active[l] ? t[l] - t_old[l] : 0.0;
     V at[kPieces + 1], rate_at[kPieces + 1], kz_at[kPieces + 1];
     at[0] = V{};
-    if constexpr (Extremes) rate_at[0] = horner(w.rate, 1, p, V{});
-    kz_at[0] = horner(w.kz, 1, p, V{});
-    for (int k = 1; k <= kPieces; ++k) {
-      at[k] = h * static_cast<double>(k) / static_cast<double>(kPieces);
-      if constexpr (Extremes) rate_at[k] = horner(w.rate, 1, p, at[k]);
-      kz_at[k] = horner(w.kz, 1, p, at[k]);
-    }
+    for (int k = 1; k <= kPieces; ++k) at[k] = h * static_cast<double>(k) / static_cast<double>(kPieces);
+    if constexpr (Extremes) horner_pieces(w.rate, 1, p, at, rate_at);
+    horner_pieces(w.kz, 1, p, at, kz_at);
 
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;

@@ -1,0 +1,216 @@
+// decided_tilt_verdicts() (verdicts.hpp): each verdict at the tolerance that decides it gives
+// the verdicts of the sweep's default pass (batch_tilt_verdicts at 1e-12) point for point, on
+// every example's map and on maps built so that many points lie near the threshold, where the
+// loose pass and the closed form must hand their points on; and the tolerance recorded is the
+// one that decided each point.
+
+#include "heavytop/verdicts.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "heavytop/batch.hpp"
+#include "heavytop/frames.hpp"
+#include "heavytop/lagrange_exact.hpp"
+#include "heavytop/sweep.hpp"
+#include "heavytop/io/config.hpp"
+
+namespace heavytop {
+namespace {
+
+struct Grid {
+  std::vector<Body> bodies;
+  std::vector<InitialState> states;
+};
+
+Grid grid(const Body& base, const InitialState& start, const std::vector<SweepAxis>& axes) {
+  Grid g;
+  for (std::size_t i = 0; i < grid_size(axes); ++i) {
+    Body b = base;
+    InitialState s = start;
+    apply_grid_point(axes, i, b, s);
+    g.bodies.push_back(b), g.states.push_back(s);
+  }
+  return g;
+}
+
+struct Outcome {
+  std::size_t differ = 0, closed = 0, loose = 0, tight = 0, stable = 0;
+};
+
+// The decided verdicts against the default pass's, and who decided them.
+Outcome compare(const Grid& g, double horizon, double max_tilt) {
+  const NonlinearOptions o;  // the sweep's default, 1e-12
+  std::vector<TiltVerdict> reference(g.bodies.size());
+  batch_tilt_verdicts(g.bodies, g.states, horizon, max_tilt, o, reference);
+  std::vector<DecidedVerdict> got(g.bodies.size());
+  decided_tilt_verdicts(g.bodies, g.states, horizon, max_tilt, o, got);
+  Outcome out;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    out.differ += got[i].exceeded != reference[i].exceeded;
+    out.stable += !reference[i].exceeded;
+    if (got[i].tolerance == 0.0) {
+      ++out.closed;
+      EXPECT_EQ(g.bodies[i].A, g.bodies[i].B) << "the closed form decided an asymmetric body, point " << i;
+      EXPECT_FALSE(got[i].exceeded) << "the closed form decides only tops that stay up, point " << i;
+    } else if (got[i].tolerance == kLooseTolerance) {
+      ++out.loose;
+    } else {
+      EXPECT_EQ(got[i].tolerance, o.rtol) << "point " << i;
+      ++out.tight;
+    }
+  }
+  return out;
+}
+
+// Every example configuration with a [body] (mesh-top's parts are integrated as a general
+// body, which the batch does not take): its map over spin and C/A around its own values (the
+// plate's over B/A x spin, docs/commands.md's map), 12 x 12 points, horizon 50 s, max tilt
+// 0.5 rad (the horizontal gyroscope starts at pi/2: its own tilt + 0.5).
+TEST(DecidedVerdicts, EqualTheDefaultPassOnEveryExampleMap) {
+  std::size_t maps = 0, points = 0, by_default = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(HEAVYTOP_EXAMPLES)) {
+    if (entry.path().extension() != ".toml") continue;
+    const io::Configuration c = io::read_configuration(entry.path().string(), "--config");
+    if (!c.has_body || !c.parts.empty() || !batchable(c.body)) continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const Body& b = c.body;
+    const InitialState& s = c.motion;
+    std::vector<SweepAxis> axes;
+    if (b.A != b.B) {
+      axes = {parse_sweep_axis("B/A=1.05:2.95:12"), parse_sweep_axis("spin=0.5:4:12")};
+    } else {
+      const double r = b.C / b.A, top = std::min(1.4 * r, 1.0 + b.B / b.A - 1e-3);
+      axes = {parse_sweep_axis("C/A=" + std::to_string(0.6 * r) + ":" + std::to_string(top) + ":12"),
+              parse_sweep_axis("spin=" + std::to_string(0.3 * s.spin) + ":" + std::to_string(2.0 * s.spin) + ":12")};
+    }
+    const double max_tilt = std::max(0.5, tilt(s.theta0, s.phi0) + 0.5);
+    const Outcome o = compare(grid(b, s, axes), 50.0, max_tilt);
+    EXPECT_EQ(o.differ, 0u) << entry.path().filename();
+    ++maps, points += 144, by_default += o.tight;
+  }
+  EXPECT_GE(maps, 6u);  // plate, equal moments, three gyroscopes, toy top
+  // Most points are decided without the default pass (the point of it).
+  EXPECT_LT(by_default, points / 2);
+  RecordProperty("maps", static_cast<int>(maps));
+  RecordProperty("points_by_default_pass", static_cast<int>(by_default));
+}
+
+// Symmetric tops whose largest tilt (closed form) lies within 1e-4 rad of the threshold, on
+// both sides: the toy top at theta0 = 0.05 over a narrow range of spins around the one whose
+// largest tilt is 0.5 rad exactly (found by bisection on the closed form).
+TEST(DecidedVerdicts, EqualTheDefaultPassForSymmetricTopsWithin1e4RadOfTheThreshold) {
+  Body b = example_toy_top();
+  InitialState s;
+  s.theta0 = 0.05;
+  auto largest = [&](double spin) {
+    s.spin = spin;
+    return nutation_bounds(lagrange_top(b, s)).max_tilt;
+  };
+  double lo = 100.0, hi = 400.0;  // the largest tilt falls as the spin grows
+  ASSERT_GT(largest(lo), 0.5);
+  ASSERT_LT(largest(hi), 0.5);
+  for (int k = 0; k < 60; ++k) (largest(0.5 * (lo + hi)) > 0.5 ? lo : hi) = 0.5 * (lo + hi);
+  // d(tilt)/d(spin) here, to place the grid at +-1e-4 rad of tilt.
+  const double slope = (largest(lo * 1.001) - largest(lo * 0.999)) / (0.002 * lo);
+  const double half_width = std::abs(1e-4 / slope);
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("spin=" + std::to_string(lo - half_width) + ":" +
+                                                        std::to_string(lo + half_width) + ":201")};
+  const Grid g = grid(b, s, axes);
+  std::size_t near = 0;
+  for (std::size_t i = 0; i < g.bodies.size(); ++i)
+    near += std::abs(nutation_bounds(lagrange_top(g.bodies[i], g.states[i])).max_tilt - 0.5) < 1.01e-4;
+  EXPECT_GE(near, 190u);
+  const Outcome o = compare(g, 50.0, 0.5);
+  EXPECT_EQ(o.differ, 0u);
+  EXPECT_GT(o.closed, 50u);  // those more than 1e-6 rad below decided in closed form
+  EXPECT_GT(o.stable, 50u);
+  EXPECT_LT(o.stable, 150u);
+  RecordProperty("closed_form", static_cast<int>(o.closed));
+}
+
+// Nearly symmetric bodies (B/A = 1.002 .. 1.03: the plain variables, the loose pass), the toy
+// top's size at theta0 = 0.1, over spins where the largest tilt of their nutation goes from
+// about 0.3 to 0.7 rad: many points in the band max_tilt -+ 0.05 and on its edges, where the
+// loose pass must decide only what the default pass decides alike.
+TEST(DecidedVerdicts, EqualTheDefaultPassForAsymmetricBodiesNearTheThreshold) {
+  Body b = example_toy_top();
+  InitialState s;
+  s.theta0 = 0.1;
+  // The symmetric top's spins with largest tilt 0.7 and 0.3 rad bound the range.
+  auto spin_at = [&](double target) {
+    double lo = 60.0, hi = 600.0;
+    for (int k = 0; k < 60; ++k) {
+      s.spin = 0.5 * (lo + hi);
+      (nutation_bounds(lagrange_top(b, s)).max_tilt > target ? lo : hi) = s.spin;
+    }
+    return lo;
+  };
+  const double slow = spin_at(0.7), fast = spin_at(0.3);
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("B/A=1.002:1.03:5"),
+                                       parse_sweep_axis("spin=" + std::to_string(slow) + ":" + std::to_string(fast) + ":40")};
+  const Grid g = grid(b, s, axes);
+  const double horizon = 20.0, max_tilt = 0.5;
+  std::vector<TiltExtremes> e(g.bodies.size());
+  batch_tilt_extremes(g.bodies, g.states, horizon, M_PI, NonlinearOptions{}, e);
+  std::size_t in_band = 0, near_edges = 0;
+  for (const TiltExtremes& x : e) {
+    const double d = std::abs(x.max_tilt - max_tilt);
+    in_band += d < 0.05;
+    near_edges += d >= 0.05 && d < 0.1;
+  }
+  EXPECT_GE(in_band, 25u);
+  EXPECT_GE(near_edges, 25u);
+  const Outcome o = compare(g, horizon, max_tilt);
+  EXPECT_EQ(o.differ, 0u);
+  EXPECT_EQ(o.closed, 0u);
+  EXPECT_GT(o.loose, 40u);  // the loose pass decided some, the rest went on
+  EXPECT_GE(o.tight, in_band);
+  RecordProperty("in_band", static_cast<int>(in_band));
+  RecordProperty("loose", static_cast<int>(o.loose));
+}
+
+// The plate's map (B/A x spin, docs/commands.md), 20 x 20: the unstable upright rotations fall
+// fast and are decided by the loose pass's growth rule, the stable ones by its band.
+TEST(DecidedVerdicts, DecideMostOfThePlatesMapInTheLoosePass) {
+  Body b;
+  b.A = 0.010, b.B = 0.015, b.C = 0.020, b.mass = 1.0, b.length = 1.0193679918450561e-3;
+  InitialState s;
+  s.spin = 1.3, s.theta0 = 1e-4;
+  const Grid g = grid(b, s, {parse_sweep_axis("B/A=1.05:2.95:20"), parse_sweep_axis("spin=0.5:4:20")});
+  const Outcome o = compare(g, 50.0, 0.5);
+  EXPECT_EQ(o.differ, 0u);
+  EXPECT_GT(o.loose, 300u);
+  EXPECT_GT(o.stable, 50u);
+  RecordProperty("loose", static_cast<int>(o.loose));
+}
+
+TEST(DecidedVerdicts, RefuseUnequalSpansAndABadMaxTilt) {
+  const Body b = example_toy_top();
+  InitialState s;
+  s.spin = 200.0, s.theta0 = 0.05;
+  std::vector<Body> bodies{b, b};
+  std::vector<InitialState> states{s};
+  std::vector<DecidedVerdict> out(2);
+  try {
+    decided_tilt_verdicts(bodies, states, 1.0, 0.5, NonlinearOptions{}, out);
+    FAIL() << "unequal spans accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "bodies");
+  }
+  states.push_back(s);
+  try {
+    decided_tilt_verdicts(bodies, states, 1.0, 0.0, NonlinearOptions{}, out);
+    FAIL() << "max_tilt 0 accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "max_tilt");
+  }
+}
+
+}  // namespace
+}  // namespace heavytop
