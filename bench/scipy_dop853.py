@@ -26,7 +26,7 @@ import numpy as np
 import scipy
 from scipy.integrate import solve_ivp
 
-# heavytop::example_toy_top() (src/body.cpp), SI units.
+# heavytop::example_toy_top() (src/body/body.cpp), SI units.
 MASS, GRAVITY, LENGTH = 0.060, 9.81, 0.025
 C = 1.2e-5
 A = B = 6.0e-6 + 3.75e-5
@@ -42,7 +42,7 @@ def initial_factored():
 
 
 def rhs_factored(_t, y):
-    """heavytop's symmetric right-hand side (src/nonlinear.cpp, Equations<true>)."""
+    """heavytop's symmetric right-hand side (src/integrators/dopri5/nonlinear.cpp, Equations<true>)."""
     w, qx, qy, qz, v1, v2, w3, _psi = y.tolist()
     inv = 1.0 / (w * w + qx * qx + qy * qy + qz * qz)
     g1 = 2.0 * (qx * qz - w * qy) * inv

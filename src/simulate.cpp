@@ -12,8 +12,8 @@
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/taylor.hpp"
 
-#include "detail/integration.hpp"
-#include "detail/streams.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 namespace {

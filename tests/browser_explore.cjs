@@ -154,8 +154,11 @@ async function checkReport(browser) {
   await page.waitForSelector("#scene-canvas", { timeout: 20000 });
   const t0 = Date.now();
   await page.click("#explorer-open");
-  const frameHandle = await page.waitForSelector("#explorer-frame:not([hidden])");
-  const frame = await frameHandle.contentFrame();
+  await page.waitForSelector("#explorer-frame:not([hidden])");
+  // The frame that holds explore.html, not the iframe's first about:blank: a file:// page is its
+  // own origin, so Chromium may commit explore.html in another process, a new Frame, and a wait on
+  // the old one never ends (the "ready" timeouts under load).
+  const frame = await page.waitForFrame((f) => f.url().endsWith("/explore.html"), { timeout: 30000 });
   await frame.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 30000 });
   const inside = await frame.evaluate(() => ({ spin: Number(document.getElementById("spin").value), answer: document.getElementById("answer").textContent,
                                                canvas: !!document.getElementById("scene-canvas"), version: window.heavytop.version,

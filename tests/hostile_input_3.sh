@@ -167,11 +167,15 @@ interrupted() {
     sleep 0.05
   done
   kill -INT $pid 2>/dev/null; wait $pid 2>/dev/null
+  if [ -e "$name" ]; then echo "    (the sweep finished before it could be interrupted: make its grid slower)"; return 1; fi
   [ -f "$name.partial" ] && [ -f "$name.partial.args" ]
 }
-slow="--vary spin=0:300:20 --vary B/A=0.8:1.2:25 --model nonlinear --theta0 0.01 --horizon 20"
+# Slow enough (2.6 s on 2 quiet cores; a horizon of 20 s took 0.1 s and finished before the
+# interrupt on CI's machine) that the interrupt always lands while the sweep runs.
+slow="--vary spin=0:300:20 --vary B/A=0.8:1.2:25 --model nonlinear --theta0 0.01 --horizon 500"
+# A damped top falls within seconds, so its sweep is slow only by its number of points (2.2 s).
 check "a damped sweep records its damping, friction and motor in FILE.partial.args" \
-  interrupted dmp.csv $slow --transverse-damping 0.01 --friction 0.001 --driven true
+  interrupted dmp.csv --vary spin=0:300:400 --vary B/A=0.8:1.2:25 --model nonlinear --theta0 0.01 --horizon 20 --transverse-damping 0.01 --friction 0.001 --driven true
 check "... all of them (a resume without them used the undamped rows: 131 of 500 wrong)" \
   grep -q "damping 0.01 0 0.001 true" dmp.csv.partial.args
 check "... and --max-steps" grep -q " 100000000\$" dmp.csv.partial.args
@@ -265,6 +269,16 @@ for cmd in lifetime sweep; do
 done
 check "lifetime --horizon 1e300 is refused up front" run 2 lifetime --horizon 1e300
 check "... naming --horizon: too long" says "horizon: too long"
+# A spin no double can follow over the default horizons: refused, or left out and said, at once
+# (each ran for minutes to hours: 1000 s of lifetime, and the report's stability diagram).
+check "lifetime --spin 1.8e19 (its default horizon beyond a double) is refused at once" \
+  bash -c "timeout 20 '$H' lifetime --spin 1.8e19 > out 2> err; [ \$? -eq 2 ]"
+check "... naming --horizon and its default" says "error: --horizon: the default 1e+03 s is too long"
+check "report --spin 1.8e19 is written within seconds" bash -c "timeout 30 '$H' report --spin 1.8e19 --output fast > /dev/null 2>&1"
+check "... its stability diagram says its nonlinear verdicts are left out" \
+  grep -q "The nonlinear verdicts are left out: at spins up to 2.88e+19 rad/s" fast/report.html
+check "... and the toy top's report keeps them" bash -c "
+  '$H' report --output toy > /dev/null 2>&1 && ! grep -q 'verdicts are left out' toy/report.html && grep -q 'nonlinear: stays up' toy/stability-diagram.svg"
 check "precession of a damped body warns that the damping is ignored" run 0 precession --tilt 0.3 --transverse-damping 0.01
 check "... on stderr, one line" bash -c "grep -q 'warning: .*damping.*ignored' err && [ \$(wc -l < err) -eq 1 ]"
 check "... and not of an undamped one" run 0 precession --tilt 0.3

@@ -324,6 +324,35 @@ TEST(DampedNonlinear, SmallTiltsFollowTheDampedLinearisation) {
   }
 }
 
+// Strong drag makes the motion stiff: dopri5's step is held at its stability boundary on the
+// negative real axis, h |lambda| = 3.31 with |lambda| = d_t / A, however slowly the body moves;
+// a run that cannot reach its end within max_steps stops early (after a hundredth of them)
+// saying so, instead of spending them all (d_t = 1e9 on the toy top: 80 s, now 1 s).
+TEST(DampedNonlinear, StrongDragHoldsTheStepAtTheStabilityBoundaryAndAHopelessRunStopsEarly) {
+  Body b = make_body(1.0, 1.0, 1.5, 1.0);
+  b.damping.transverse = 1e4;  // |lambda| = 1e4 1/s against a motion of ~1 rad/s
+  const InitialState s = make_state(10.0, 0.1);
+  const double t_end = 100.0, boundary_steps = t_end * b.damping.transverse / b.A / 3.31;
+  NonlinearSummary summary;
+  simulate_nonlinear(b, s, sample_times(t_end, 11), {}, &summary);
+  EXPECT_GT(double(summary.steps), 0.95 * boundary_steps);
+  EXPECT_LT(double(summary.steps), 1.05 * boundary_steps);
+  // With fewer steps allowed than half of that: stopped at a hundredth of max_steps, saying why.
+  NonlinearOptions few;
+  few.max_steps = std::size_t(0.4 * boundary_steps);
+  try {
+    simulate_nonlinear(b, s, sample_times(t_end, 11), few);
+    ADD_FAILURE() << "no failure";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the damping makes this motion stiff"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("after " + std::to_string(few.max_steps / 100) + " steps"), std::string::npos) << e.what();
+  }
+  // And a run that can finish within max_steps is not stopped.
+  NonlinearOptions enough;
+  enough.max_steps = std::size_t(1.5 * boundary_steps);
+  EXPECT_NO_THROW(simulate_nonlinear(b, s, sample_times(t_end, 11), enough));
+}
+
 TEST(DampedNonlinear, TheIntegratorsThatCannotIncludeDampingRefuseIt) {
   Body b = make_body(1.0, 1.0, 1.5, 1.0);
   b.damping.axial = 0.1;

@@ -63,3 +63,18 @@ def test_a_binary_ply_reads_to_the_box_it_holds(tmp_path, fmt, endian):
 def test_a_map_that_is_a_device_is_refused_before_it_is_read():
     with pytest.raises(heavytop.InvalidInput, match="^path: .*not a regular file"):
         heavytop.read_map("/dev/zero")
+
+
+TOY = dict(A=4.35e-5, B=4.35e-5, C=1.2e-5, mass=0.06, length=0.025)
+
+
+def test_a_spin_no_double_can_follow_is_refused_by_lifetime_naming_its_default_horizon():
+    # Its default 1000 s ran for minutes towards max_steps.
+    with pytest.raises(heavytop.InvalidInput, match=r"^horizon: the default 1e\+03 s is too long"):
+        heavytop.lifetime(heavytop.Body(**TOY), spin=1.8e19)
+
+
+def test_the_report_at_such_a_spin_leaves_the_diagrams_nonlinear_verdicts_out_and_says_so(tmp_path):
+    # The stability diagram's nonlinear verdicts at 1.8e19 rad/s ran for hours.
+    page = heavytop.report(heavytop.Body(**TOY), tmp_path / "fast", spin=1.8e19)
+    assert "The nonlinear verdicts are left out: at spins up to 2.88e+19 rad/s" in open(page).read()

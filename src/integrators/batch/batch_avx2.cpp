@@ -3,4 +3,4 @@
 #define HEAVYTOP_BATCH_NS avx2
 #define HEAVYTOP_BATCH_LANES 4
 #define HEAVYTOP_BATCH_ENTRY batch_scan_avx2
-#include "detail/batch_kernel.hpp"
+#include "integrators/batch/batch_kernel.hpp"

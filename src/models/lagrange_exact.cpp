@@ -11,7 +11,7 @@
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 

@@ -11,11 +11,11 @@
 
 #include "heavytop/rigid_body.hpp"
 
-#include "detail/dop853_tableau.hpp"
-#include "detail/integration.hpp"
-#include "detail/sampling.hpp"
-#include "detail/tilt_scan.hpp"
-#include "detail/streams.hpp"
+#include "integrators/dop853/dop853_tableau.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/sampling.hpp"
+#include "integrators/tilt_scan.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 

@@ -2,7 +2,7 @@
 // Private to the library: the integrators of the nonlinear model with their samples streamed
 // (SampleStream), behind simulate_nonlinear/simulate_splitting and simulate_streaming().
 
-#include "integration.hpp"
+#include "integrators/integration.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/splitting.hpp"
 #include "heavytop/taylor.hpp"

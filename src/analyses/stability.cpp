@@ -9,7 +9,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
-#include "detail/quadratic.hpp"
+#include "math/quadratic.hpp"
 
 namespace heavytop {
 namespace {

@@ -3,15 +3,15 @@
 // set), HEAVYTOP_BATCH_LANES (doubles per vector) and HEAVYTOP_BATCH_ENTRY (the entry point's
 // name). No include guard: one inclusion per translation unit.
 //
-// It is taylor.cpp's TaylorIntegrator::step() and scan_tilt() with every double of one body
+// It is taylor/integrator.hpp's TaylorIntegrator::step() and taylor.cpp's scan_tilt() with every double of one body
 // widened to a vector of W bodies (structure of arrays: c[n][i][lane]). Every expression keeps
 // the unbatched one's operations and their order, so each lane computes exactly what the
 // unbatched integrator computes for its body (see batch.hpp); what is not elementwise (the
 // step size's pow, the events' sign tests and roots, the tilt's atan2) is done lane by lane in
 // scalar code. Builtins instead of <cmath>'s inline wrappers, and no templates from outside
-// this namespace: see detail/batch.hpp.
+// this namespace: see integrators/batch/batch.hpp.
 
-#include "batch.hpp"  // src/detail/batch.hpp: nothing else, see there
+#include "integrators/batch/batch.hpp"  // the kernel interface: nothing else, see there
 
 namespace heavytop::detail::HEAVYTOP_BATCH_NS {
 namespace {
@@ -45,7 +45,7 @@ inline double integer_power(double x, int n) {
   return r;
 }
 
-// min(pow(x, -1/(p-1)), pow(y, -1/p)) (taylor.cpp's step: std::min(a, b) = (b < a) ? b : a)
+// min(pow(x, -1/(p-1)), pow(y, -1/p)) (taylor/integrator.hpp's step: std::min(a, b) = (b < a) ? b : a)
 // with one pow instead of two wherever the order of the two is clear: a < b exactly when
 // x^p > y^(p-1), compared from frexp's mantissas and exponents (no overflow). The margin
 // 1e-10 on that ratio is a relative gap of >= 1e-10 / (p (p - 1)) >= 1.8e-13 between a and b,
@@ -85,7 +85,7 @@ struct Reciprocals {
   }
 };
 
-// taylor.cpp's Plain::coefficients / SpinFactored::coefficients, on W lanes.
+// taylor/recurrence.hpp's Plain::coefficients / SpinFactored::coefficients, on W lanes.
 template <bool Symmetric>
 inline void coefficients(Work& w, int p, const Reciprocals& r) {
   if constexpr (Symmetric) {

@@ -7,7 +7,7 @@
 
 #include "heavytop/frames.hpp"
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 namespace {

@@ -10,9 +10,9 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
-#include "detail/integration.hpp"
-#include "detail/sampling.hpp"
-#include "detail/streams.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/sampling.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 

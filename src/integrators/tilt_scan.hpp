@@ -12,7 +12,7 @@
 #include <boost/math/tools/toms748_solve.hpp>
 
 #include "heavytop/nonlinear.hpp"
-#include "integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop::detail {
 

@@ -10,9 +10,9 @@
 
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
-#include "detail/integration.hpp"
-#include "detail/sampling.hpp"
-#include "detail/streams.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/sampling.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 

@@ -7,7 +7,7 @@
 #include "heavytop/frames.hpp"
 #include "heavytop/lagrange_exact.hpp"
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "detail/quadratic.hpp"
+#include "math/quadratic.hpp"
 
 namespace heavytop {
 namespace {

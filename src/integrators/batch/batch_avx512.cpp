@@ -3,4 +3,4 @@
 #define HEAVYTOP_BATCH_NS avx512
 #define HEAVYTOP_BATCH_LANES 8
 #define HEAVYTOP_BATCH_ENTRY batch_scan_avx512
-#include "detail/batch_kernel.hpp"
+#include "integrators/batch/batch_kernel.hpp"

@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 

@@ -21,7 +21,7 @@
 #include "heavytop/frames.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/state.hpp"
-#include "integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop::detail {
 

@@ -14,10 +14,10 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
-#include "detail/integration.hpp"
-#include "detail/sampling.hpp"
-#include "detail/tilt_scan.hpp"
-#include "detail/streams.hpp"
+#include "integrators/integration.hpp"
+#include "integrators/sampling.hpp"
+#include "integrators/tilt_scan.hpp"
+#include "integrators/streams.hpp"
 
 namespace heavytop {
 
@@ -256,6 +256,7 @@ class Integrator {
         controlled_(typename Controlled::error_checker_type(options.atol, options.rtol)),
         max_steps_(options.max_steps),
         summary_(summary),
+        horizon_(horizon),
         x_(x0) {
     if constexpr (Damped) equations_.mode = initial_friction_mode(body.damping, x0[kW3], gyroscopic(x0));
     equations_(x_, dxdt_, 0.0);
@@ -282,6 +283,9 @@ class Integrator {
     dxdt_old_ = dxdt_;
     t_old_ = t_;
     controlled_step(controlled_, equations_, x_old_, dxdt_old_, t_, x_, dxdt_, dt_, attempts_, max_steps_, summary_);
+    if constexpr (Damped) {
+      if (attempts_ == max_steps_ / 100) give_up_if_stiff();
+    }
     end_x_ = x_;
     end_dxdt_ = dxdt_;
     end_t_ = t_;
@@ -346,6 +350,25 @@ class Integrator {
     if (summary_) ++summary_->rhs_evaluations;
   }
 
+  // Strong damping makes the motion stiff: a drag rate d / I of 2e13 1/s (d_t = 1e9 on the toy
+  // top) bounds an explicit step however slowly the body moves, and 1e8 steps took 80 s to
+  // reach max_steps. Once a hundredth of max_steps is spent, a run that cannot reach its horizon
+  // within max_steps stops with the reason. The bound: the drag's rates on w in body axes are
+  // d_t / A, d_t / B and d_a / C, and dopri5 is stable on the negative real axis only to
+  // h |lambda| = 3.31 (test_damping measures the steps there); taken at half, the steps left
+  // are at least (horizon - t) rate / 6.62.
+  void give_up_if_stiff() const {
+    const Damping& d = body_.damping;
+    const double rate = std::max(d.transverse / std::max(body_.A, body_.B), d.axial / body_.C);
+    const double longest = 6.62 / rate;  // s
+    const double left = (horizon_ - t_) / longest;
+    if (!(double(attempts_) + left > double(max_steps_))) return;
+    throw std::runtime_error(fmt::format(
+        "nonlinear: the damping makes this motion stiff: dopri5's step stays below about {:.3g} s, so reaching "
+        "t = {:.6g} s needs more than {:.3g} steps, beyond max_steps = {} (stopped at t = {:.6g} s after {} steps)",
+        longest, horizon_, double(attempts_) + left, max_steps_, t_, attempts_));
+  }
+
   void interpolate_step(double t, State& out) const {
     controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, end_x_, end_dxdt_, end_t_);
   }
@@ -383,6 +406,7 @@ class Integrator {
   Controlled controlled_;
   std::size_t max_steps_;
   NonlinearSummary* summary_;
+  double horizon_;  // s, where the run ends
   std::size_t attempts_ = 0;
   Scales scales_;
   ConservedQuantities initial_;

@@ -32,7 +32,7 @@ struct BatchPoint {
   std::size_t index;           // where its result goes
   double x0[7];                // to_vector(initial_rigid_body_state(initial)): q (w, x, y, z), w (rad/s)
   double tilt0;                // rad, the tilt of x0 (taylor.cpp's tilt_of)
-  // The right-hand side's coefficients, as taylor.cpp's Plain and SpinFactored hold them:
+  // The right-hand side's coefficients, as taylor/variables.hpp's Plain and SpinFactored hold them:
   double e1, e2, e3;           // (B - C)/A, (C - A)/B, (A - B)/C (dimensionless)
   double ka, kb;               // m g R / A, m g R / B (1/s^2)
   double c_over_a;             // C / A (dimensionless)

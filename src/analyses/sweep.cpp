@@ -23,7 +23,7 @@
 #include "heavytop/stability.hpp"
 #include "heavytop/units.hpp"
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 namespace {

@@ -13,8 +13,8 @@
 #include "heavytop/rigid_body.hpp"
 #include "heavytop/taylor.hpp"
 
-#include "detail/batch.hpp"
-#include "detail/integration.hpp"
+#include "integrators/batch/batch.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 

@@ -3,4 +3,4 @@
 #define HEAVYTOP_BATCH_NS sse2
 #define HEAVYTOP_BATCH_LANES 2
 #define HEAVYTOP_BATCH_ENTRY batch_scan_sse2
-#include "detail/batch_kernel.hpp"
+#include "integrators/batch/batch_kernel.hpp"

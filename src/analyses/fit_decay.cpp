@@ -10,7 +10,7 @@
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <fmt/format.h>
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 #include "heavytop/damping.hpp"
 
 namespace heavytop {

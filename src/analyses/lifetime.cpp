@@ -7,7 +7,7 @@
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
 
-#include "detail/integration.hpp"
+#include "integrators/integration.hpp"
 
 namespace heavytop {
 namespace {
@@ -49,6 +49,11 @@ Lifetime spin_decay(const Body& body, const InitialState& initial, const Lifetim
   life.horizon = options.horizon ? *options.horizon
                  : life.time_to_critical && *life.time_to_critical > 0.0 ? 10.0 * *life.time_to_critical
                                                                           : kDefaultLifetimeHorizon;
+  // The default horizon too: at 1.8e19 rad/s its 1000 s ran for minutes towards max_steps.
+  if (const double longest = longest_meaningful_time(body, initial); !options.horizon && life.horizon > longest)
+    throw InvalidInput("horizon", fmt::format("the default {:.3g} s is too long at this motion: beyond {:.3g} s a double "
+                                              "no longer resolves its phase to 1e-3 rad (give a shorter horizon)",
+                                              life.horizon, longest));
   return life;
 }
 

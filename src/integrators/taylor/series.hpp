@@ -1,0 +1,96 @@
+#pragma once
+// Private to the Taylor integrator (src/integrators/taylor/): the arithmetic of truncated
+// power series. A jet (every variable's coefficients, order by order), Cauchy products,
+// Horner's rule, and the root of a function of the step's series. No physics here.
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include <boost/math/tools/toms748_solve.hpp>
+
+#include "heavytop/taylor.hpp"
+
+namespace heavytop::detail::taylor {
+
+// ---- Series ---------------------------------------------------------------------------------------
+//
+// A truncated power series in tau = t - t0: s(tau) = sum_n s[n] tau^n (normalised Taylor
+// coefficients, s[n] = s^(n)(t0) / n!). The solution's coefficients follow from x' = f(x):
+// x[n+1] = f[n] / (n + 1), f[n] the n-th coefficient of f(x(tau)), which for a polynomial f
+// is a sum of Cauchy products sum_{j=0..n} a[j] b[n-j] of the coefficients up to order n.
+constexpr int kM = kTaylorMaxOrder;
+using Coefficients = std::array<double, kM + 1>;  // one series
+
+// The state's series, order by order: c[n][i] is coefficient n of variable i (conservative
+// sets: 7 used, the 8th pads a row to two cache-line halves; the damped set: 10). A row per
+// order lets one loop over j form every Cauchy product of order n in SIMD pairs (SSE2, the
+// x86-64 baseline) and Horner's rule run on all variables at once. W is even.
+template <int W>
+struct alignas(64) JetOf {
+  double c[kM + 1][W];
+};
+using Jet = JetOf<8>;
+
+using v2d = double __attribute__((vector_size(16)));
+inline v2d load2(const double* p) {
+  v2d v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline v2d splat(double a) { return v2d{a, a}; }
+
+// The n-th coefficient of the product of two series.
+inline double cauchy(const Coefficients& a, const Coefficients& b, int n) {
+  double s = 0.0;
+  for (int j = 0; j <= n; ++j) s += a[j] * b[n - j];
+  return s;
+}
+
+// s(tau) by Horner's rule.
+inline double horner(const Coefficients& s, int p, double tau) {
+  double v = s[p];
+  for (int n = p - 1; n >= 0; --n) v = v * tau + s[n];
+  return v;
+}
+
+// Every variable of the jet at tau (Horner, W / 2 pairs at a time).
+template <int W>
+inline void horner(const JetOf<W>& x, int p, double tau, double* out) {
+  constexpr int kPairs = W / 2;
+  v2d v[kPairs];
+  for (int i = 0; i < kPairs; ++i) v[i] = load2(&x.c[p][2 * i]);
+  const v2d t = splat(tau);
+  for (int n = p - 1; n >= 0; --n)
+    for (int i = 0; i < kPairs; ++i) v[i] = v[i] * t + load2(&x.c[n][2 * i]);
+  for (int i = 0; i < kPairs; ++i) std::memcpy(out + 2 * i, &v[i], sizeof v[i]);
+}
+
+// Variable i of the jet at tau (Horner).
+template <int W>
+inline double horner(const JetOf<W>& x, int i, int p, double tau) {
+  double v = x.c[p][i];
+  for (int n = p - 1; n >= 0; --n) v = v * tau + x.c[n][i];
+  return v;
+}
+
+// One variable's series out of the jet.
+template <int W>
+inline Coefficients series_of(const JetOf<W>& x, int i, int p) {
+  Coefficients s{};
+  for (int n = 0; n <= p; ++n) s[n] = x.c[n][i];
+  return s;
+}
+
+// A root of f on [a, b] where f(a), f(b) have opposite signs, to ~1e-15 of the step h
+// (TOMS 748; f is a function of the step's series, cheap, so it is solved to rounding).
+template <class F>
+double root(F f, double a, double b, double fa, double fb, double h) {
+  std::uintmax_t iterations = 100;
+  const auto bracket = boost::math::tools::toms748_solve(
+      f, a, b, fa, fb, [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+}  // namespace heavytop::detail::taylor
