@@ -1,13 +1,89 @@
 // The outer-product recurrences (recurrence_kernels.hpp), included once by each of
 // recurrence_sse2.cpp, recurrence_avx2.cpp and recurrence_avx512.cpp, which define
-// HEAVYTOP_RECURRENCE_SUFFIX (the entry points' suffix) and HEAVYTOP_RECURRENCE_WIDE (1 where
-// 8-wide registers pair two 4-wide products). No include guard: once per translation unit.
+// HEAVYTOP_RECURRENCE_SUFFIX (the entry points' suffix), HEAVYTOP_RECURRENCE_PAIRS (1: the
+// products in SSE2 pairs instead) and HEAVYTOP_RECURRENCE_WIDE (1 where 8-wide registers pair
+// two 4-wide products). No include guard: once per translation unit.
 
 #include "integrators/taylor/recurrence_kernels.hpp"
 
 #define HEAVYTOP_CAT2(a, b) a##b
 #define HEAVYTOP_CAT(a, b) HEAVYTOP_CAT2(a, b)
 
+#if HEAVYTOP_RECURRENCE_PAIRS
+// SSE2 (the x86-64 baseline, and WebAssembly): the products in pairs, as recurrence.hpp formed
+// them before the outer-product form (4-wide products lowered to pairs measured 1.4x slower).
+namespace heavytop::detail::taylor {
+namespace {
+typedef double v2d __attribute__((vector_size(16)));
+inline v2d load2(const double* p) {
+  v2d v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+inline v2d splat(double a) { return v2d{a, a}; }
+}  // namespace
+
+void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8], double* g1, double* g2, int p,
+                                                                  const PlainConstants& k) {
+  for (int n = 0; n < p; ++n) {
+    v2d qw_w{}, qx_w{}, qy_w{}, qz_w{}, wx_w3{}, yz_w3{};  // q_i (w1, w2); (qw, qx) w3, (qy, qz) w3
+    v2d xz_yz = {}, wy_wx = {}, w23_w31 = {};
+    double w12 = 0.0;
+    for (int j = 0; j <= n; ++j) {
+      const double *a = c[j], *b = c[n - j];
+      const v2d w = load2(b + 4), w3 = splat(b[6]);
+      qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
+      wx_w3 += load2(a) * w3, yz_w3 += load2(a + 2) * w3;
+      xz_yz += load2(a + 1) * splat(b[3]);
+      wy_wx += splat(a[0]) * v2d{b[2], b[1]};
+      w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
+      w12 += a[4] * b[5];
+    }
+    g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
+    g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
+    const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+    double* next = c[n + 1];
+    next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
+    next[1] = half * (qw_w[0] + yz_w3[0] - qz_w[1]);
+    next[2] = half * (qw_w[1] + qz_w[0] - wx_w3[1]);
+    next[3] = half * (wx_w3[0] + qx_w[1] - qy_w[0]);
+    next[4] = inv * (k.e1 * w23_w31[0] + k.ka * g2[n]);
+    next[5] = inv * (k.e2 * w23_w31[1] - k.kb * g1[n]);
+    next[6] = inv * (k.e3 * w12);
+    next[7] = 0.0;
+  }
+}
+
+void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8], double* g1, double* g2, int p,
+                                                                     const FactoredConstants& k) {
+  const double nutation = k.c_over_a * c[0][6];  // rad/s, C w3 / A
+  for (int n = 0; n < p; ++n) {
+    v2d pw_v{}, px_v{}, py_v{}, pz_v{}, xz_yz = {}, wy_wx = {};  // p_i (v1, v2); gamma
+    for (int j = 0; j <= n; ++j) {
+      const double *a = c[j], *b = c[n - j];
+      const v2d v = load2(b + 4);
+      pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
+      xz_yz += load2(a + 1) * splat(b[3]);
+      wy_wx += splat(a[0]) * v2d{b[2], b[1]};
+    }
+    g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
+    g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
+    const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+    const double* row = c[n];
+    double* next = c[n + 1];
+    next[0] = -half * (px_v[0] + py_v[1]);
+    next[1] = half * (pw_v[0] - pz_v[1]);
+    next[2] = half * (pw_v[1] + pz_v[0]);
+    next[3] = half * (px_v[1] - py_v[0]);
+    next[4] = inv * (-nutation * row[5] + k.ka * g2[n]);
+    next[5] = inv * (nutation * row[4] - k.ka * g1[n]);
+    next[6] = 0.0;
+    next[7] = 0.0;
+  }
+}
+}  // namespace heavytop::detail::taylor
+
+#else  // the outer-product form
 namespace heavytop::detail::taylor {
 namespace HEAVYTOP_CAT(ns_, HEAVYTOP_RECURRENCE_SUFFIX) {
 namespace {
@@ -143,6 +219,8 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
 }
 
 }  // namespace heavytop::detail::taylor
+
+#endif  // HEAVYTOP_RECURRENCE_PAIRS
 
 #undef HEAVYTOP_CAT
 #undef HEAVYTOP_CAT2

@@ -43,7 +43,7 @@ bool recurrence_isa_supported(int isa);
 PlainKernel plain_kernel(int isa);
 FactoredKernel factored_kernel(int isa);
 
-// The widest the processor runs, chosen once.
+// best_recurrence_isa()'s, chosen once.
 PlainKernel best_plain_kernel();
 FactoredKernel best_factored_kernel();
 
