@@ -214,3 +214,38 @@ TEST(DecidedVerdicts, RefuseUnequalSpansAndABadMaxTilt) {
 
 }  // namespace
 }  // namespace heavytop
+
+namespace heavytop {
+namespace {
+
+// sweep_verdicts() takes its nonlinear column from decided_tilt_verdicts(): the default pass's
+// verdicts, each with the tolerance that decided it; dopri5's one point at a time records the
+// sweep's own.
+TEST(DecidedVerdicts, SweepRecordsTheTolerancePerPoint) {
+  const Body base = example_toy_top();
+  InitialState state;
+  state.spin = 200.0, state.theta0 = 0.05;
+  const std::vector<SweepAxis> axes{parse_sweep_axis("B/A=1:1.2:3"), parse_sweep_axis("spin=60:300:8")};
+  SweepOptions o;
+  o.nonlinear = true, o.horizon = 5.0, o.max_tilt = 0.5, o.threads = 1;
+  const std::vector<SweepVerdict> got = sweep_verdicts(base, state, axes, o, 0, grid_size(axes));
+  const Grid g = grid(base, state, axes);
+  std::vector<TiltVerdict> reference(g.bodies.size());
+  batch_tilt_verdicts(g.bodies, g.states, o.horizon, o.max_tilt, o.integrator, reference);
+  std::size_t closed = 0, loose = 0, tight = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_TRUE(got[i].nonlinear && got[i].nonlinear_tolerance);
+    EXPECT_EQ(*got[i].nonlinear, !reference[i].exceeded) << i;
+    const double t = *got[i].nonlinear_tolerance;
+    closed += t == 0.0, loose += t == kLooseTolerance, tight += t == o.integrator.rtol;
+  }
+  EXPECT_EQ(closed + loose + tight, got.size());
+  EXPECT_GT(closed, 0u);  // B/A = 1: symmetric tops that stay up
+  EXPECT_GT(loose + tight, 0u);
+  SweepOptions dopri5 = o;
+  dopri5.nonlinear_integrator = Integrator::Adaptive;
+  for (const SweepVerdict& v : sweep_verdicts(base, state, axes, dopri5, 0, 4)) EXPECT_EQ(*v.nonlinear_tolerance, 1e-12);
+}
+
+}  // namespace
+}  // namespace heavytop
