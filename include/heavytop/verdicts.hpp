@@ -1,11 +1,12 @@
 #pragma once
 /// \file
 /// A sweep's nonlinear verdicts ("does the tilt stay <= max_tilt over [0, horizon]?") each at
-/// the tolerance that decides it (issue 31; docs/sweeps.md, "The tolerance of a verdict").
+/// the tolerance that decides it (issue 31).
 ///
 /// The verdict a sweep promises is batch_tilt_verdicts()' at the sweep's tolerance (the
 /// "default pass", 1e-12 unless --rtol/--atol say otherwise). Most points of a map are far from
-/// the threshold, where a much cheaper computation gives the same verdict:
+/// the threshold, where a much cheaper computation gives the same verdict (docs/performance.md,
+/// "Verdicts at the tolerance that decides them"):
 ///   1. a symmetric top (A == B) whose largest tilt in closed form (lagrange-exact's nutation
 ///      bounds, exact for the motion the integrators approximate) lies more than 1e-6 rad
 ///      below max_tilt stays up: no integration at all;
