@@ -190,6 +190,33 @@ TEST(DecidedVerdicts, DecideMostOfThePlatesMapInTheLoosePass) {
   RecordProperty("loose", static_cast<int>(o.loose));
 }
 
+// The plate's unstable rotations crossing the threshold near the horizon: seven horizons from
+// 3 s to 47.8 s, among them the median and the 90th percentile of their crossing times at
+// 1e-12 (10.5 s and 16.3 s on the 40 x 40 map) and the last one, where the loose pass's rule
+// for a fall (the crossing's shift) must hand the late ones on. 40 x 40 points.
+TEST(DecidedVerdicts, EqualTheDefaultPassWhereThePlateFallsNearTheHorizon) {
+  Body b;
+  b.A = 0.010, b.B = 0.015, b.C = 0.020, b.mass = 1.0, b.length = 1.0193679918450561e-3;
+  InitialState s;
+  s.spin = 1.3, s.theta0 = 1e-4;
+  const Grid g = grid(b, s, {parse_sweep_axis("B/A=1.05:2.95:40"), parse_sweep_axis("spin=0.5:4:40")});
+  std::size_t late_total = 0;
+  for (double horizon : {3.0, 6.0, 10.5, 16.3, 25.0, 40.0, 47.8}) {
+    std::vector<TiltVerdict> v(g.bodies.size());
+    batch_tilt_verdicts(g.bodies, g.states, horizon, 0.5, NonlinearOptions{}, v);
+    std::size_t late = 0;  // crossings in the last 20% of the horizon
+    for (const TiltVerdict& x : v) late += x.exceeded && x.t_end > 0.8 * horizon;
+    if (horizon == 10.5 || horizon == 16.3) {
+      EXPECT_GT(late, 50u) << horizon;
+    }
+    const Outcome o = compare(g, horizon, 0.5);
+    EXPECT_EQ(o.differ, 0u) << horizon;
+    EXPECT_GT(o.loose, 800u) << horizon;
+    late_total += late;
+  }
+  RecordProperty("late_crossings", static_cast<int>(late_total));
+}
+
 TEST(DecidedVerdicts, RefuseUnequalSpansAndABadMaxTilt) {
   const Body b = example_toy_top();
   InitialState s;
