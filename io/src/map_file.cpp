@@ -15,6 +15,7 @@
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/linear_models.hpp"
+#include "heavytop/verdicts.hpp"
 
 #ifdef HEAVYTOP_HAVE_HDF5
 #include <hdf5.h>
@@ -126,10 +127,14 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
   }
   const auto first_verdict = std::find(header.begin(), header.end(), "first-order");
   const std::vector<std::string> keys(header.begin(), first_verdict);
-  const bool nonlinear = !header.empty() && header.back() == "nonlinear";
+  // `sweep --tolerance-column` adds nonlinear_tolerance after nonlinear (read past: a map
+  // holds verdicts).
+  const bool tolerance = header.size() > 1 && header.back() == "nonlinear_tolerance";
+  const bool nonlinear = header.size() > std::size_t(tolerance) && header[header.size() - 1 - tolerance] == "nonlinear";
   std::vector<SweepAxis> named;
   for (const auto& k : keys) named.push_back(SweepAxis{.key = k, .start = 0, .stop = 0, .count = 1});
-  if (keys.empty() || keys.size() > kMaxSweepAxes || text.substr(0, eol + 1) != sweep_csv_header(named, nonlinear))
+  if (keys.empty() || keys.size() > kMaxSweepAxes ||
+      text.substr(0, eol + 1) != sweep_csv_header(named, nonlinear, tolerance))
     throw InvalidInput(key, "not a sweep's CSV: the header must be 1 to 3 varied keys, then " +
                                 std::string(sweep_csv_header({}, nonlinear).substr(0, sweep_csv_header({}, nonlinear).size() - 1)));
   std::vector<std::vector<double>> values;
@@ -237,23 +242,33 @@ std::string oversized_heap(const std::string& path, std::uintmax_t file_size) {
 void pack_verdicts(const std::vector<SweepVerdict>& verdicts, std::string& out) {
   out.reserve(out.size() + verdicts.size() * kPackedVerdictSize);
   for (const auto& v : verdicts) {
+    // The tolerance that decided the nonlinear verdict, as a class (map_file.hpp).
+    const int tolerance = !v.nonlinear || !v.nonlinear_tolerance     ? 0
+                          : *v.nonlinear_tolerance == 0.0             ? 1
+                          : *v.nonlinear_tolerance == kLooseTolerance ? 2
+                                                                      : 3;
     const char record[kPackedVerdictSize] = {char(v.linear[0]), char(v.linear[1]), char(v.linear[2]), char(v.lyapunov),
-                                             char(v.lyapunov_certificate), char(v.nonlinear ? int(*v.nonlinear) : 2)};
+                                             char(v.lyapunov_certificate),
+                                             char((v.nonlinear ? int(*v.nonlinear) : 2) | tolerance << 2)};
     out.append(record, kPackedVerdictSize);
   }
 }
 
-std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
+std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes, double sweep_rtol) {
   if (bytes.size() % kPackedVerdictSize != 0) throw Failure("packed verdicts: a record is torn");
   std::vector<SweepVerdict> out(bytes.size() / kPackedVerdictSize);
   constexpr auto kLast = static_cast<unsigned char>(kLastLyapunovCertificate);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const auto* r = reinterpret_cast<const unsigned char*>(bytes.data() + i * kPackedVerdictSize);
-    if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || r[5] > 2)
+    const int nonlinear = r[5] & 3, tolerance = r[5] >> 2;
+    if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || nonlinear > 2 || tolerance > 3 ||
+        (nonlinear == 2 && tolerance != 0))
       throw Failure("packed verdicts: a byte is out of range");
     out[i] = SweepVerdict{.linear = {r[0] == 1, r[1] == 1, r[2] == 1}, .lyapunov = r[3] == 1,
                           .lyapunov_certificate = static_cast<LyapunovCertificate>(r[4]),
-                          .nonlinear = r[5] == 2 ? std::nullopt : std::optional<bool>(r[5] == 1)};
+                          .nonlinear = nonlinear == 2 ? std::nullopt : std::optional<bool>(nonlinear == 1)};
+    if (tolerance)
+      out[i].nonlinear_tolerance = tolerance == 1 ? 0.0 : tolerance == 2 ? kLooseTolerance : sweep_rtol;
   }
   return out;
 }
@@ -268,7 +283,8 @@ bool proves_stable(LyapunovCertificate c) {
 }  // namespace
 
 std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
-                                  bool packed) {
+                                  bool packed, bool tolerance) {
+  tolerance = tolerance && nonlinear;
   const std::size_t total = grid_size(axes);
   std::size_t n = 0;
   if (packed) {
@@ -281,7 +297,7 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
     }
     return n;
   }
-  const std::size_t cells = axes.size() + 5 + (nonlinear ? 1 : 0);
+  const std::size_t cells = axes.size() + 5 + (nonlinear ? 1 : 0) + (tolerance ? 1 : 0);
   std::vector<std::string_view> cell;
   for (std::size_t at = 0; n < total && at < records.size(); ++n) {
     const std::size_t end = records.find('\n', at);
@@ -318,7 +334,14 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
       if (f < 0) break;
       v.nonlinear = f == 1;
     }
-    if (sweep_csv_rows(axes, n, {v}) != line) break;  // the varied values at their grid point, exactly
+    if (tolerance) {
+      const std::string_view t = cell[c + 6];
+      double value = 0.0;
+      const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+      if (ec != std::errc() || p != t.data() + t.size()) break;
+      v.nonlinear_tolerance = value;
+    }
+    if (sweep_csv_rows(axes, n, {v}, tolerance) != line) break;  // the varied values at their grid point, exactly
   }
   return n;
 }
