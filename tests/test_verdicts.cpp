@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/sweep.hpp"
 #include "heavytop/io/config.hpp"
+#include "heavytop/io/formats.hpp"
+#include "heavytop/io/map_file.hpp"
 
 namespace heavytop {
 namespace {
@@ -272,6 +275,46 @@ TEST(DecidedVerdicts, SweepRecordsTheTolerancePerPoint) {
   SweepOptions dopri5 = o;
   dopri5.nonlinear_integrator = Integrator::Adaptive;
   for (const SweepVerdict& v : sweep_verdicts(base, state, axes, dopri5, 0, 4)) EXPECT_EQ(*v.nonlinear_tolerance, 1e-12);
+}
+
+// `sweep --tolerance-column`: the CSV's nonlinear_tolerance column, read back by the resume's
+// check (valid_journal_records) and past by read_map; MPI's packed records carry the tolerance
+// as a class (0 none, 1 closed form, 2 loose, 3 the sweep's own), a journal none.
+TEST(DecidedVerdicts, TheToleranceColumnRoundTrips) {
+  const std::vector<SweepAxis> axes{parse_sweep_axis("spin=100:300:3")};
+  std::vector<SweepVerdict> v(3);
+  v[0].nonlinear = true, v[0].nonlinear_tolerance = 0.0;
+  v[1].nonlinear = true, v[1].nonlinear_tolerance = kLooseTolerance;
+  v[2].nonlinear = false, v[2].nonlinear_tolerance = 1e-12;
+  const std::string head = io::sweep_csv_header(axes, true, true), rows = io::sweep_csv_rows(axes, 0, v, true);
+  EXPECT_TRUE(head.ends_with(",nonlinear,nonlinear_tolerance\n")) << head;
+  EXPECT_EQ(rows.substr(rows.rfind(',', rows.size() - 2)), ",1e-12\n");
+  EXPECT_EQ(io::valid_journal_records(rows, axes, true, false, true), 3u);
+  EXPECT_EQ(io::valid_journal_records(rows, axes, true, false, false), 0u);  // a column too many
+  EXPECT_EQ(io::sweep_csv_rows(axes, 0, v), io::sweep_csv_rows(axes, 0, v, false));  // the contract's rows
+  EXPECT_EQ(io::sweep_csv_rows(axes, 0, v).find("e-"), std::string::npos);
+  std::string packed;
+  io::pack_verdicts(v, packed);
+  const std::vector<SweepVerdict> back = io::unpack_verdicts(packed, 1e-12);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back[i].nonlinear, v[i].nonlinear) << i;
+    EXPECT_EQ(back[i].nonlinear_tolerance, v[i].nonlinear_tolerance) << i;
+  }
+  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true), 0u);  // a journal has no tolerance bits
+  for (SweepVerdict& x : v) x.nonlinear_tolerance.reset();
+  packed.clear();
+  io::pack_verdicts(v, packed);
+  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true), 3u);
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "heavytop-test-tolerance-column.csv";
+  {
+    std::ofstream out(file);
+    out << head << rows;
+  }
+  const StabilityMap map = io::read_map(file.string(), "--map");
+  std::filesystem::remove(file);
+  EXPECT_TRUE(map.nonlinear);
+  EXPECT_EQ(map.verdicts.size(), 3u);
+  EXPECT_EQ(*map.verdicts[1].nonlinear, true);
 }
 
 }  // namespace
