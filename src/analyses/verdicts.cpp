@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "heavytop/frames.hpp"
@@ -65,7 +66,17 @@ void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const Initial
     o.rtol = o.atol = kLooseTolerance;
     const double band = std::min(kBand, 0.5 * max_tilt);
     std::vector<TiltBand> r(loose.bodies.size());
-    batch_tilt_bands(loose.bodies, loose.states, horizon, max_tilt - band, max_tilt + band, o, r);
+    try {
+      batch_tilt_bands(loose.bodies, loose.states, horizon, max_tilt - band, max_tilt + band, o, r);
+    } catch (const InvalidInput&) {
+      throw;  // the default pass would refuse the same
+    } catch (const std::runtime_error&) {
+      // A failure of the loose run (its steps not finite, or max_steps) is not the sweep's:
+      // every such point takes the default pass, whose failure is.
+      for (std::size_t k = 0; k < loose.bodies.size(); ++k) tight.add(loose.bodies[k], loose.states[k], loose.index[k]);
+      loose.bodies.clear();
+      r.clear();
+    }
     // Each step's error in the attitude's quaternion is at most atol + rtol per component
     // (|q_i| <= 1), 2 (atol + rtol) on the tilt's cosine and sine: 4 (atol + rtol) on the tilt.
     const double per_step = 4.0 * (o.atol + o.rtol);
