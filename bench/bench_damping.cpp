@@ -19,7 +19,7 @@ void BM_DampedToyTop(benchmark::State& state) {
   if (state.range(0) >= 1) body.damping = {.transverse = 1e-7, .axial = 2e-7};
   if (state.range(0) >= 2) body.damping.friction = 1e-7;
   heavytop::InitialState s = heavytop::example_motion();
-  heavytop::NonlinearOptions options;
+  heavytop::Tolerances options;
   options.rtol = options.atol = 1e-10;
   const std::vector<double> times = {0.0, kHorizon};
   heavytop::NonlinearSummary summary;

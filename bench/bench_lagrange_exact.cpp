@@ -60,7 +60,7 @@ void BM_LagrangeExactSample(benchmark::State& state) {
   state.counters["samples_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["series"] = top.fourier_series ? 1.0 : 0.0;
-  state.counters["series_terms"] = top.detail.series_terms;
+  state.counters["series_terms"] = top.series_terms;
 }
 BENCHMARK(BM_LagrangeExactSample)
     ->ArgNames({"t0_exp", "series", "near_vertical"})
@@ -177,7 +177,7 @@ int write_work_precision(const std::string& path) {
     const double exact_s = wall_time([&] { exact = simulate_lagrange_exact(body, s, times); });
     std::fprintf(f, "%g,lagrange-exact,0,%.6g,0,0,0\n", periods, exact_s);
     for (int e = 4; e <= 13; ++e) {
-      NonlinearOptions o;
+      Tolerances o;
       o.rtol = o.atol = std::pow(10.0, -e);
       NonlinearSummary summary;
       Trajectory tr;

@@ -21,7 +21,7 @@
 namespace {
 
 using heavytop::InitialState;
-using heavytop::NonlinearOptions;
+using heavytop::Tolerances;
 using heavytop::NonlinearSummary;
 
 constexpr double kHorizon = 10.0;  // s
@@ -45,7 +45,7 @@ const heavytop::Trajectory& reference(bool asymmetric, std::size_t samples) {
   static std::map<std::pair<bool, std::size_t>, heavytop::Trajectory> cache;
   auto [it, added] = cache.try_emplace({asymmetric, samples});
   if (added) {
-    NonlinearOptions tight;
+    Tolerances tight;
     tight.rtol = tight.atol = 1e-14;
     it->second = heavytop::simulate_nonlinear(
         asymmetric ? asymmetric_toy_top() : heavytop::example_toy_top(), toy_state(),
@@ -60,7 +60,7 @@ void BM_NonlinearToyTop(benchmark::State& state) {
   const double tol = std::pow(10.0, -static_cast<double>(state.range(1)));
   const heavytop::Body body =
       state.range(2) ? asymmetric_toy_top() : heavytop::example_toy_top();
-  NonlinearOptions options;
+  Tolerances options;
   options.rtol = options.atol = tol;
   const std::vector<double> times = heavytop::sample_times(kHorizon, samples);
   NonlinearSummary summary;
@@ -97,7 +97,7 @@ BENCHMARK(BM_NonlinearToyTop)
 // The stability-sweep primitive: largest tilt over the horizon, refined on the dense output.
 void BM_MaxTiltToyTop(benchmark::State& state) {
   const heavytop::Body body = heavytop::example_toy_top();
-  NonlinearOptions options;
+  Tolerances options;
   options.rtol = options.atol = 1e-10;
   for (auto _ : state)
     benchmark::DoNotOptimize(heavytop::max_tilt(body, toy_state(), kHorizon, 2.0, options));
@@ -113,7 +113,7 @@ BENCHMARK(BM_MaxTiltToyTop)->UseRealTime()->Unit(benchmark::kMillisecond);
 void BM_GeneralBodyToyTop(benchmark::State& state) {
   heavytop::Body body = heavytop::example_toy_top();
   body.general.offset_x = state.range(0) ? 1e-4 : 0.0;
-  NonlinearOptions options;
+  Tolerances options;
   options.rtol = options.atol = 1e-10;
   const std::vector<double> times = heavytop::sample_times(kHorizon, 2);
   NonlinearSummary summary;

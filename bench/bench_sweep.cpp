@@ -78,7 +78,7 @@ void BM_NonlinearMap(benchmark::State& state) {
   const Map m = map(static_cast<int>(state.range(0)));
   const Way way = static_cast<Way>(state.range(1));
   const Subset s = subset(m);
-  const NonlinearOptions tol;  // the sweep's default, 1e-12
+  const Tolerances tol;  // the sweep's default, 1e-12
   const BatchIsa isa = way == BatchedSse2 ? BatchIsa::Sse2 : way == BatchedAvx2 ? BatchIsa::Avx2 : best_batch_isa();
   if (!batch_isa_supported(isa)) {
     state.SkipWithError("instruction set not supported here");

@@ -16,7 +16,7 @@ Action add_compare_command(CLI::App& app) {
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json", "csv"});
   auto t_end = std::make_shared<double>(10.0);
   auto samples = std::make_shared<long long>(10001);
-  auto tol = std::make_shared<NonlinearOptions>();
+  auto tol = std::make_shared<Tolerances>();
   cmd->add_option("--t-end", *t_end, "s, horizon (> 0)")->default_str("10");
   cmd->add_option("--samples", *samples, "samples over the horizon (>= 3)")->default_str("10001");
   cmd->add_option("--rtol", tol->rtol, "nonlinear: relative tolerance per step")->default_str(fmt::format("{}", tol->rtol));

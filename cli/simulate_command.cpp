@@ -57,7 +57,7 @@ Action add_simulate_command(CLI::App& app) {
                                      "linear models: analytic (closed form) | numeric (matrix exponential)")
                          ->check(CLI::IsMember({"analytic", "numeric"}))
                          ->default_str("analytic");
-  NonlinearOptions& adaptive = o->options.adaptive;
+  Tolerances& adaptive = o->options.adaptive;
   o->rtol_option = cmd->add_option("--rtol", adaptive.rtol, "nonlinear: relative tolerance per step")
                        ->default_str(fmt::format("{}", adaptive.rtol));
   o->atol_option = cmd->add_option("--atol", adaptive.atol, "nonlinear: absolute tolerance per step")
@@ -77,7 +77,7 @@ Action add_simulate_command(CLI::App& app) {
   o->max_steps_option =
       cmd->add_option("--max-steps", o->max_steps,
                       "nonlinear: the most integration steps a run may take before it gives up")
-          ->default_str(fmt::format("{} (auto, taylor, dopri5, dop853), {} (splitting)", NonlinearOptions{}.max_steps,
+          ->default_str(fmt::format("{} (auto, taylor, dopri5, dop853), {} (splitting)", Tolerances{}.max_steps,
                                     SplittingOptions{}.max_steps));
 
   return [inputs, o] {

@@ -121,7 +121,7 @@ std::string integrator_names(std::string_view separator, std::string_view last, 
   return joined;
 }
 
-Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances) {
+Integrator choose_integrator(const Body& body, const Tolerances& tolerances) {
   // Measured at equal error (docs/integrators.md, "Choosing"): the Taylor integrator (with
   // taylor_order()'s rule) is the fastest at every error level from 1e-3 down on both benchmark
   // bodies; only for a symmetric body at tolerances above 1e-2 (errors of ~5e-3 and more) is
@@ -139,12 +139,12 @@ Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerance
   return eps > kAutoTaylorBelow && body.A == body.B && !is_general(body) ? Integrator::Dopri5 : Integrator::Taylor;
 }
 
-Integrator resolve_integrator(Integrator asked, const Body& body, const NonlinearOptions& tolerances) {
+Integrator resolve_integrator(Integrator asked, const Body& body, const Tolerances& tolerances) {
   return asked == Integrator::Auto ? choose_integrator(body, tolerances) : asked;
 }
 
 TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
-                           double stop_above, const NonlinearOptions& tolerances, NonlinearSummary* summary) {
+                           double stop_above, const Tolerances& tolerances, NonlinearSummary* summary) {
   switch (resolve_integrator(integrator, body, tolerances)) {
     case Integrator::Taylor: {
       TaylorSummary taylor;
@@ -273,7 +273,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
             "this motion (halve it, or use the adaptive integrator)",
             summary.max_relative_energy_drift, kSplittingEnergyWarning, options.splitting.step));
     } else {
-      NonlinearOptions adaptive = options.adaptive;
+      Tolerances adaptive = options.adaptive;
       if (options.progress) adaptive.progress = options.progress;
       NonlinearSummary summary;
       const Integrator chosen = resolve_integrator(options.integrator, body, adaptive);

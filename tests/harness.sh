@@ -1,5 +1,6 @@
 # Shared by the shell tests: the binary in $H, a scratch folder as the working directory
-# (removed at exit, with any background job), and check NAME COMMAND... counting results.
+# (removed at exit, with any background job), and check NAME COMMAND... counting results
+# (HEAVYTOP_SHOW_PASSES=1 prints the passes too: to see which checks an older build passes).
 set -u
 H=$(realpath "${HEAVYTOP:?set HEAVYTOP to the heavytop binary}")
 work=$(mktemp -d)
@@ -9,7 +10,8 @@ failures=0
 passes=0
 check() {
   local name=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+  if "$@"; then passes=$((passes + 1)); if [ -n "${HEAVYTOP_SHOW_PASSES:-}" ]; then echo "ok: $name"; fi
+  else echo "FAIL: $name"; failures=$((failures + 1)); fi
 }
 finish() {
   echo "$passes passed, $failures failed"

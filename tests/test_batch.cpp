@@ -62,14 +62,14 @@ std::vector<Problem> random_problems(std::size_t count, unsigned seed) {
   return out;
 }
 
-NonlinearOptions tolerance(double tol) {
-  NonlinearOptions o;
+Tolerances tolerance(double tol) {
+  Tolerances o;
   o.rtol = o.atol = tol;
   return o;
 }
 
 std::vector<TiltExtremes> run(const std::vector<Problem>& problems, const std::vector<std::size_t>& which,
-                              double horizon, double stop, const NonlinearOptions& o, BatchIsa isa) {
+                              double horizon, double stop, const Tolerances& o, BatchIsa isa) {
   std::vector<Body> bodies;
   std::vector<InitialState> starts;
   for (std::size_t i : which) bodies.push_back(problems[i].body), starts.push_back(problems[i].start);
@@ -79,7 +79,7 @@ std::vector<TiltExtremes> run(const std::vector<Problem>& problems, const std::v
 }
 
 std::vector<TiltVerdict> run_verdicts(const std::vector<Problem>& problems, const std::vector<std::size_t>& which,
-                                      double horizon, double stop, const NonlinearOptions& o, BatchIsa isa) {
+                                      double horizon, double stop, const Tolerances& o, BatchIsa isa) {
   std::vector<Body> bodies;
   std::vector<InitialState> starts;
   for (std::size_t i : which) bodies.push_back(problems[i].body), starts.push_back(problems[i].start);
@@ -111,7 +111,7 @@ void expect_same_bits(const TiltExtremes& a, const TiltExtremes& b, const std::s
 // sweep's call) the same crossing.
 TEST(Batch, APointsResultDoesNotDependOnItsBatch) {
   const std::vector<Problem> problems = random_problems(40, 1);
-  const NonlinearOptions o = tolerance(1e-10);
+  const Tolerances o = tolerance(1e-10);
   const double horizon = 5.0, stop = 0.6;
   std::vector<TiltExtremes> alone(problems.size());
   for (std::size_t i = 0; i < problems.size(); ++i) alone[i] = run(problems, {i}, horizon, stop, o, BatchIsa::Sse2)[0];
@@ -176,7 +176,7 @@ TEST(Batch, AgreesWithDopri5AndDop853OnRandomBodies) {
   const std::vector<Problem> problems = random_problems(60, 3);
   std::vector<std::size_t> all(problems.size());
   std::iota(all.begin(), all.end(), 0);
-  const NonlinearOptions o = tolerance(1e-12);
+  const Tolerances o = tolerance(1e-12);
   const double horizon = 20.0, stop = 0.8;
   const std::vector<TiltExtremes> got = run(problems, all, horizon, stop, o, best_batch_isa());
   double worst_tilt[2] = {}, worst_time[2] = {};

@@ -376,7 +376,7 @@ TEST(DampedNonlinear, TheIntegratorsThatCannotIncludeDampingRefuseIt) {
   EXPECT_EQ(key_of(Model::Nonlinear, {}), "accepted");
   // auto: the conservative body's rule (A = B here: dopri5 above min(rtol, atol) = 1e-2).
   EXPECT_EQ(choose_integrator(b, {}), Integrator::Taylor);
-  NonlinearOptions loose;
+  Tolerances loose;
   loose.rtol = loose.atol = 0.05;
   EXPECT_EQ(choose_integrator(b, loose), Integrator::Adaptive);
   EXPECT_EQ(key_of(Model::LagrangeExact, {}), "model");

@@ -24,8 +24,8 @@ const Body kSymmetric = make_body(1.0, 1.0, 0.4, 0.5);
 const Body kAsymmetric = make_body(1.0, 1.3, 1.6, 0.5);
 const InitialState kStart = make_state(8.0, 0.2, -0.1, 0.3, 0.2);
 
-NonlinearOptions tolerance(double eps) {
-  NonlinearOptions o;
+Tolerances tolerance(double eps) {
+  Tolerances o;
   o.rtol = o.atol = eps;
   return o;
 }

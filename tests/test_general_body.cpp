@@ -29,8 +29,8 @@ constexpr double kPi = 3.141592653589793;
 
 double angle_difference(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * kPi)); }
 
-NonlinearOptions tight() {
-  NonlinearOptions o;
+Tolerances tight() {
+  Tolerances o;
   o.rtol = 1e-13;
   o.atol = 1e-13;
   return o;

@@ -20,6 +20,7 @@
 #include <Eigen/Geometry>
 
 #include "heavytop/nonlinear.hpp"
+#include "models/lagrange_evaluator.hpp"  // white-box: the poles, the Landen route
 #include "test_support.hpp"
 
 namespace heavytop {
@@ -118,12 +119,11 @@ TEST_P(AgreesWithNonlinear, Over100NutationPeriods) {
   const LagrangeTop top_direct = lagrange_top(c.body, c.state, direct);
   // 100 nutation periods; for a constant tilt 100 periods of the precession (or 100 s).
   double horizon = 100.0 * top.nutation_period;
-  if (!std::isfinite(horizon))
-    horizon = std::abs(top.detail.phi_rate) > 0.0 ? 100.0 * 2.0 * kPi / std::abs(top.detail.phi_rate)
-                                                   : 100.0;
+  const double phi_rate = detail::evaluator_of(top).phi_rate;
+  if (!std::isfinite(horizon)) horizon = std::abs(phi_rate) > 0.0 ? 100.0 * 2.0 * kPi / std::abs(phi_rate) : 100.0;
   horizon = std::min(horizon, 3000.0);
   const std::vector<double> times = sample_times(horizon, 4001);
-  NonlinearOptions tight;
+  Tolerances tight;
   tight.rtol = tight.atol = 1e-14;
   const Trajectory reference = simulate_nonlinear(c.body, c.state, times, tight);
   const Trajectory exact = simulate_lagrange_exact(c.body, c.state, times);
@@ -186,12 +186,12 @@ TEST(LagrangeExact, NearSeparatrixTheIntegratorConvergesToIt) {
   const Body body = make_body(1.0, 0.5, 1.0);
   const InitialState s = make_state(3.0, 1e-3);  // critical spin 4 rad/s
   const LagrangeTop top = lagrange_top(body, s);
-  ASSERT_LT(top.detail.kc2, 1e-5);
-  ASSERT_EQ(top.detail.theta_terms, 0);  // Landen's descent
+  ASSERT_LT(detail::evaluator_of(top).jacobi.kc2, 1e-5);
+  ASSERT_EQ(detail::evaluator_of(top).jacobi.theta_terms, 0);  // Landen's descent
   const std::vector<double> times = sample_times(20.0 * top.nutation_period, 201);
   std::vector<double> errors;
   for (double tol : {1e-12, 1e-13, 1e-14}) {
-    NonlinearOptions o;
+    Tolerances o;
     o.rtol = o.atol = tol;
     const Trajectory nl = simulate_nonlinear(body, s, times, o);
     double e = 0.0;
@@ -341,15 +341,15 @@ TEST(LagrangeExact, PeriodIncrementsMatchQuadrature) {
     LagrangeExactOptions direct;
     direct.fourier_series = false;
     const LagrangeTop top = lagrange_top(c.body, c.state, direct);
-    const LagrangeTop::Detail& d = top.detail;
+    const detail::LagrangeEvaluator& d = detail::evaluator_of(top);
     if (!std::isfinite(top.nutation_period) || d.pole[0].signed_form || d.pole[1].signed_form) continue;
     const double P = d.pole[0].residue, Q = d.pole[1].residue;
-    const double kc = std::sqrt(d.kc2);
+    const double kc = std::sqrt(d.jacobi.kc2);
     // 1 - u and 1 + u at tau (near 0) or at K - tau (near K, by sn(K - e) = cn(e)/dn(e),
     // cn(K - e) = k' sn(e)/dn(e)): both ends of a half period without loss of digits.
     auto poles_rate = [&](double e, bool from_k, double sign_p) {
       double cn, dn;
-      double sn = boost::math::jacobi_elliptic(d.k, e, &cn, &dn);
+      double sn = boost::math::jacobi_elliptic(d.jacobi.k, e, &cn, &dn);
       if (from_k) {
         const double s = cn / dn;
         cn = kc * sn / dn;
@@ -367,7 +367,7 @@ TEST(LagrangeExact, PeriodIncrementsMatchQuadrature) {
     double dphi = 0.0, dpsi = d.spin_rate_linear * top.nutation_period;
     for (bool from_k : {false, true})
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-        const double a = cuts[i] * d.K, b = cuts[i + 1] * d.K;
+        const double a = cuts[i] * d.jacobi.K, b = cuts[i + 1] * d.jacobi.K;
         dphi += 2.0 * quad.integrate([&](double e) { return poles_rate(e, from_k, 1.0); }, a, b, 1e-14);
         dpsi += 2.0 * quad.integrate([&](double e) { return poles_rate(e, from_k, -1.0); }, a, b, 1e-14);
       }

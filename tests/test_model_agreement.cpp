@@ -17,7 +17,7 @@ Body body_with(double A, double B, double C, double mgR) {
 /// max over the samples of |angle error| / max |angle|, both angles, linear model vs nonlinear.
 double relative_error(LinearModelKind kind, const Body& b, const InitialState& s, double horizon) {
   const auto times = sample_times(horizon, 2001);
-  NonlinearOptions tight;
+  Tolerances tight;
   tight.rtol = tight.atol = 1e-12;
   const Trajectory truth = simulate_nonlinear(b, s, times, tight);
   const Trajectory model = simulate_linear(linear_model(kind, b), s, times, LinearMethod::Analytic);

@@ -524,7 +524,7 @@ INSTANTIATE_TEST_SUITE_P(Bodies, AdaptiveConvergence, ::testing::ValuesIn(symmet
 // work: theta reaches 0.43 rad), integrated as RigidBodySystem (quaternion + body w, no spin
 // factored out) by Bulirsch-Stoer extrapolation at 1e-13, against simulate(Nonlinear) by both
 // of its integrators, over 3 s (~18 nutation periods), 31 samples. The bound 1e-9 rad is the
-// accuracy NonlinearOptions documents for its defaults (measured: adaptive 9.3e-13 rad,
+// accuracy Tolerances documents for its defaults (measured: adaptive 9.3e-13 rad,
 // splitting order 4 at h = 1e-3 s 1.0e-11 rad); rates 4e-8 rad/s = 1e-9 rad times the fastest
 // frequency, ~40 rad/s (measured 3.3e-11, 3.7e-10 rad/s).
 // Along the odeint run E and L_zeta (conserved_quantities of from_vector(x)) keep to 1e-12

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -28,6 +29,12 @@ using test_support::column;
 using test_support::make_body;
 using test_support::make_state;
 using test_support::sci;
+
+// Code written against heavytop 0.1 still compiles: NonlinearOptions is Tolerances (deprecated).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+static_assert(std::is_same_v<NonlinearOptions, Tolerances>);
+#pragma GCC diagnostic pop
 
 // The tilt acos(k_zeta) from SPEC's angles: k_zeta = cos(theta) cos(phi).
 double tilt_from_angles(double theta, double phi) {
@@ -224,12 +231,12 @@ TEST(Nonlinear, ErrorShrinksWithTheTolerance) {
   const Body body = example_toy_top();
   const InitialState s = make_state(200.0, 0.05, 0.02, 0.5, -0.3);
   const std::vector<double> times = sample_times(5.0, 501);
-  NonlinearOptions reference;
+  Tolerances reference;
   reference.rtol = reference.atol = 1e-14;
   const Trajectory ref = simulate_nonlinear(body, s, times, reference);
   double previous = 1.0;
   for (double tol : {1e-6, 1e-8, 1e-10, 1e-12}) {
-    NonlinearOptions o;
+    Tolerances o;
     o.rtol = o.atol = tol;
     const double error = max_angle_difference(simulate_nonlinear(body, s, times, o), ref);
     EXPECT_LT(error, previous / 10.0) << "tol " << tol;  // 100x tighter: >= 10x smaller
@@ -405,22 +412,22 @@ TEST(Nonlinear, ErratumE3HangingAsymmetricBodySwingsOutOnlyInsideItsUnstableWind
 
 TEST(Nonlinear, OptionsIsValidRejectsOutOfRangeSettings) {
   std::string why;
-  EXPECT_TRUE(NonlinearOptions{}.IsValid(&why));
+  EXPECT_TRUE(Tolerances{}.IsValid(&why));
   const double nan = std::nan("");
   const double inf = INFINITY;
   for (double rtol : {0.0, -1e-8, nan, inf, 1e-16, 2.0}) {
-    NonlinearOptions o;
+    Tolerances o;
     o.rtol = rtol;
     EXPECT_FALSE(o.IsValid(&why)) << rtol;
     EXPECT_EQ(why.rfind("rtol: ", 0), 0u) << why;
   }
   for (double atol : {0.0, -1.0, nan, inf}) {
-    NonlinearOptions o;
+    Tolerances o;
     o.atol = atol;
     EXPECT_FALSE(o.IsValid(&why)) << atol;
     EXPECT_EQ(why.rfind("atol: ", 0), 0u) << why;
   }
-  NonlinearOptions o;
+  Tolerances o;
   o.max_steps = 0;
   EXPECT_FALSE(o.IsValid(nullptr));
   o.max_steps = 1;
@@ -432,7 +439,7 @@ TEST(Nonlinear, OptionsIsValidRejectsOutOfRangeSettings) {
 TEST(Nonlinear, RefusesBadInputWithTheKey) {
   const Body body = make_body(1.0, 1.0, 2.0, 1.0);
   const InitialState s = make_state(3.0, 0.3);
-  NonlinearOptions o;
+  Tolerances o;
   o.rtol = -1.0;
   try {
     simulate_nonlinear(body, s, {0.0, 1.0}, o);
@@ -456,7 +463,7 @@ TEST(Nonlinear, RefusesBadInputWithTheKey) {
 
 TEST(Nonlinear, FailsWithARuntimeErrorWhenMaxStepsIsExceeded) {
   const Body body = make_body(1.0, 1.0, 2.0, 1.0);
-  NonlinearOptions o;
+  Tolerances o;
   o.max_steps = 50;
   try {
     simulate_nonlinear(body, make_state(3.0, 0.3), {100.0}, o);
@@ -472,7 +479,7 @@ TEST(Nonlinear, FailsWithARuntimeErrorWhenMaxStepsIsExceeded) {
 
 TEST(Nonlinear, FailsWithARuntimeErrorWhenTheToleranceCannotBeMet) {
   // Pure relative accuracy 1e-15 on components that start at 0: rounding alone exceeds it.
-  NonlinearOptions o;
+  Tolerances o;
   o.rtol = 1e-15;
   o.atol = 1e-300;
   ASSERT_TRUE(o.IsValid(nullptr));

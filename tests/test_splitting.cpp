@@ -84,7 +84,7 @@ TEST(Splitting, EnergyErrorStaysBoundedOver1e5NutationPeriods) {
   }
 
   // The adaptive Dormand-Prince integrator at a loose tolerance drifts instead.
-  NonlinearOptions loose;
+  Tolerances loose;
   loose.rtol = loose.atol = 1e-6;
   NonlinearSummary adaptive_summary;
   const Trajectory adaptive = simulate_nonlinear(kTop, kStart, times, loose, &adaptive_summary);
@@ -122,7 +122,7 @@ TEST_P(Convergence, MeasuredOrderIsTheDeclaredOrder) {
   if (c.body.A == c.body.B) {
     reference = simulate_lagrange_exact(c.body, s, times);
   } else {
-    NonlinearOptions tight;
+    Tolerances tight;
     tight.rtol = tight.atol = 1e-14;
     reference = simulate_nonlinear(c.body, s, times, tight);
   }
@@ -158,7 +158,7 @@ TEST(Splitting, AgreesWithAdaptiveForAnAsymmetricBody) {
   const Body body = make_body(1.0, 1.2, 0.7, 0.8);
   const InitialState s = make_state(6.0, 0.4, 0.2, 0.3, -0.1);
   const std::vector<double> times = sample_times(50.0, 501);
-  NonlinearOptions tight;
+  Tolerances tight;
   tight.rtol = tight.atol = 1e-13;
   SplittingOptions options;
   options.order = 4;

@@ -35,8 +35,8 @@ double max_angle_error(const Trajectory& a, const Trajectory& b) {
   return e;
 }
 
-NonlinearOptions tolerance(double tol) {
-  NonlinearOptions o;
+Tolerances tolerance(double tol) {
+  Tolerances o;
   o.rtol = o.atol = tol;
   return o;
 }
@@ -167,7 +167,7 @@ double tilt(const Trajectory& tr, std::size_t i) {
 // a run of simulate_taylor sampled at t (the same steps; the last is cut at t, which leaves
 // its series unchanged).
 template <class F>
-double bisect_dense_output(const Body& body, const InitialState& s, const NonlinearOptions& o, double a,
+double bisect_dense_output(const Body& body, const InitialState& s, const Tolerances& o, double a,
                            double b, const F& f) {
   auto at = [&](double t) { return f(simulate_taylor(body, s, {0.0, t}, o), 1); };
   double fa = at(a);
@@ -197,7 +197,7 @@ TEST(TaylorEvents, TiltExtremaOnTheSeriesEqualBisectionOnTheDenseOutput) {
   // Started with a tilt rate, so that neither extreme is the start itself.
   const InitialState toy = make_state(200.0, 0.05, 0.0, 0.1), asym = make_state(10.0, 0.2, 0.0, 0.1);
   for (const Case& c : {Case{toy_top(), toy, 1.0}, Case{asymmetric_body(), asym, 3.0}}) {
-    const NonlinearOptions o = tolerance(1e-15);
+    const Tolerances o = tolerance(1e-15);
     const TiltExtremes e = taylor_tilt_extremes(c.body, c.start, c.horizon, 10.0, o);
     ASSERT_FALSE(e.exceeded);
     ASSERT_GT(e.t_min, 0.0);
@@ -222,7 +222,7 @@ TEST(TaylorEvents, TiltExtremaOnTheSeriesEqualBisectionOnTheDenseOutput) {
 // integrations differ by 1e-8 rad there).
 TEST(TaylorEvents, ThresholdCrossingOnTheSeriesEqualsBisection) {
   const Example plate = examples()[3];
-  const NonlinearOptions o = tolerance(1e-15);
+  const Tolerances o = tolerance(1e-15);
   const TiltExtremes e = taylor_tilt_extremes(plate.body, plate.start, 60.0, 1.0, o);
   ASSERT_TRUE(e.exceeded);
   EXPECT_NEAR(e.max_tilt, 1.0, 1e-12);
@@ -309,13 +309,13 @@ TEST(Taylor, OrderFollowsTheMeasuredRule) {
   EXPECT_EQ(taylor_order(tolerance(1e-12), plain), 22);     // ceil(0.75 x 27.63 + 1)
   EXPECT_EQ(taylor_order(tolerance(1e-15), plain), 24);     // clamped
   EXPECT_EQ(taylor_order(tolerance(1.0), plain), 2);        // clamped
-  NonlinearOptions mixed;
+  Tolerances mixed;
   mixed.rtol = 1e-3, mixed.atol = 1e-6;
   EXPECT_EQ(taylor_order(mixed, plain), 12);
 }
 
 TEST(Taylor, RefusesBadInputAndFailsOnOneLine) {
-  NonlinearOptions bad;
+  Tolerances bad;
   bad.rtol = std::nan("");
   try {
     simulate_taylor(toy_top(), toy_start(), {0.0, 1.0}, bad);
@@ -331,7 +331,7 @@ TEST(Taylor, RefusesBadInputAndFailsOnOneLine) {
   }
   EXPECT_THROW(simulate_taylor(toy_top(), toy_start(), {1.0, 0.5}), InvalidInput);
   EXPECT_THROW(taylor_tilt_extremes(toy_top(), toy_start(), -1.0), InvalidInput);
-  NonlinearOptions few = tolerance(1e-12);
+  Tolerances few = tolerance(1e-12);
   few.max_steps = 3;
   for (int which = 0; which < 2; ++which) {
     try {

@@ -28,8 +28,8 @@ using test_support::make_body;
 using test_support::make_state;
 using test_support::sci;
 
-NonlinearOptions tolerance(double tol) {
-  NonlinearOptions o;
+Tolerances tolerance(double tol) {
+  Tolerances o;
   o.rtol = o.atol = tol;
   return o;
 }

@@ -48,7 +48,7 @@ struct Outcome {
 
 // The decided verdicts against the default pass's, and who decided them.
 Outcome compare(const Grid& g, double horizon, double max_tilt) {
-  const NonlinearOptions o;  // the sweep's default, 1e-12
+  const Tolerances o;  // the sweep's default, 1e-12
   std::vector<TiltVerdict> reference(g.bodies.size());
   batch_tilt_verdicts(g.bodies, g.states, horizon, max_tilt, o, reference);
   std::vector<DecidedVerdict> got(g.bodies.size());
@@ -160,7 +160,7 @@ TEST(DecidedVerdicts, EqualTheDefaultPassForAsymmetricBodiesNearTheThreshold) {
   const Grid g = grid(b, s, axes);
   const double horizon = 20.0, max_tilt = 0.5;
   std::vector<TiltExtremes> e(g.bodies.size());
-  batch_tilt_extremes(g.bodies, g.states, horizon, M_PI, NonlinearOptions{}, e);
+  batch_tilt_extremes(g.bodies, g.states, horizon, M_PI, Tolerances{}, e);
   std::size_t in_band = 0, near_edges = 0;
   for (const TiltExtremes& x : e) {
     const double d = std::abs(x.max_tilt - max_tilt);
@@ -206,7 +206,7 @@ TEST(DecidedVerdicts, EqualTheDefaultPassWhereThePlateFallsNearTheHorizon) {
   std::size_t late_total = 0;
   for (double horizon : {3.0, 6.0, 10.5, 16.3, 25.0, 40.0, 47.8}) {
     std::vector<TiltVerdict> v(g.bodies.size());
-    batch_tilt_verdicts(g.bodies, g.states, horizon, 0.5, NonlinearOptions{}, v);
+    batch_tilt_verdicts(g.bodies, g.states, horizon, 0.5, Tolerances{}, v);
     std::size_t late = 0;  // crossings in the last 20% of the horizon
     for (const TiltVerdict& x : v) late += x.exceeded && x.t_end > 0.8 * horizon;
     if (horizon == 10.5 || horizon == 16.3) {
@@ -228,14 +228,14 @@ TEST(DecidedVerdicts, RefuseUnequalSpansAndABadMaxTilt) {
   std::vector<InitialState> states{s};
   std::vector<DecidedVerdict> out(2);
   try {
-    decided_tilt_verdicts(bodies, states, 1.0, 0.5, NonlinearOptions{}, out);
+    decided_tilt_verdicts(bodies, states, 1.0, 0.5, Tolerances{}, out);
     FAIL() << "unequal spans accepted";
   } catch (const InvalidInput& e) {
     EXPECT_EQ(e.key(), "bodies");
   }
   states.push_back(s);
   try {
-    decided_tilt_verdicts(bodies, states, 1.0, 0.0, NonlinearOptions{}, out);
+    decided_tilt_verdicts(bodies, states, 1.0, 0.0, Tolerances{}, out);
     FAIL() << "max_tilt 0 accepted";
   } catch (const InvalidInput& e) {
     EXPECT_EQ(e.key(), "max_tilt");

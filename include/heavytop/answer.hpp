@@ -47,7 +47,7 @@ struct AnswerOptions {
   double max_tilt = 1.0;
   /// s, the damped body's run (lifetime()'s horizon); nullopt: lifetime()'s default.
   std::optional<double> damped_horizon;
-  NonlinearOptions integrator;  ///< the nonlinear run's tolerances
+  Tolerances integrator;  ///< the nonlinear run's tolerances
   /// True if every setting is in range; else false and "key: rule" in `why` (key "horizon" or
   /// "max_tilt").
   bool IsValid(std::string* why) const;

@@ -62,10 +62,10 @@ bool batchable(const Body& body) noexcept;
 /// ("taylor: ...") as the unbatched call on max_steps, a step lost in the rounding of t, or a
 /// state that stops being finite (the whole call then fails).
 void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltExtremes> out);
 void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltExtremes> out, BatchIsa isa);
 
 /// The sweep's question alone: did the tilt pass stop_above, and when.
@@ -80,10 +80,10 @@ struct TiltVerdict {
 /// less work; the crossing is found by the same test on the same series). Same units, keys and
 /// failures as batch_tilt_extremes().
 void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltVerdict> out);
 void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials,
-                         double horizon, double stop_above, const NonlinearOptions& options,
+                         double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltVerdict> out, BatchIsa isa);
 
 /// A verdict with a band around its threshold (the sweep's loose first pass, verdicts.hpp).
@@ -100,9 +100,9 @@ struct TiltBand {
 /// ends of each step, as taylor.cpp splits it); same units, keys and failures, and the
 /// verdicts are the same bits.
 void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                      double low, double high, const NonlinearOptions& options, std::span<TiltBand> out);
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out);
 void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                      double low, double high, const NonlinearOptions& options, std::span<TiltBand> out,
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out,
                       BatchIsa isa);
 
 }  // namespace heavytop

@@ -60,6 +60,6 @@ double natural_horizon(const Body& body, double spin);
 
 /// Runs every model from `state` at `times` (s) and compares it with `nonlinear`.
 Comparison compare_models(const Body& body, const InitialState& state,
-                          const std::vector<double>& times, const NonlinearOptions& options = {});
+                          const std::vector<double>& times, const Tolerances& options = {});
 
 }  // namespace heavytop

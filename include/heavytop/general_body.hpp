@@ -60,7 +60,7 @@ ConservedQuantities general_conserved_quantities(const Body& body, const RigidBo
 /// E_scale = T(0) + m g |c| and L_scale = sqrt(2 max eig(I) E_scale).
 std::vector<RigidBodyState> integrate_general_body(const Body& body, const RigidBodyState& x0,
                                                    const std::vector<double>& times,
-                                                   const NonlinearOptions& options = {},
+                                                   const Tolerances& options = {},
                                                    NonlinearSummary* summary = nullptr);
 
 /// simulate_nonlinear() for the general body: the body axes start on Q(phi0, theta0) (SPEC
@@ -68,6 +68,6 @@ std::vector<RigidBodyState> integrate_general_body(const Body& body, const Rigid
 /// vertical_momentum, axial_momentum = (I w).e3 and their drifts). Throws as
 /// integrate_general_body().
 Trajectory simulate_general_body(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                                 const NonlinearOptions& options = {}, NonlinearSummary* summary = nullptr);
+                                 const Tolerances& options = {}, NonlinearSummary* summary = nullptr);
 
 }  // namespace heavytop

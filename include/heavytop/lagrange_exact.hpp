@@ -17,6 +17,7 @@
 /// (L_zeta = +-L_3), the hanging body (m g R < 0) and m g R = 0 (the free symmetric body,
 /// where f is a quadratic).
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,13 +28,17 @@
 
 namespace heavytop {
 
+namespace detail {
+struct LagrangeEvaluator;  // the closed form's constants, private to the library
+}
+
 /// Throws InvalidInput for a body validate() refuses, and InvalidInput("body.B", ...) unless
 /// is_symmetric(body). The transverse moment used is (A + B)/2.
 void validate_symmetric(const Body& body);
 
 /// The precomputed closed-form motion of one symmetric body from one state. Build it with
 /// lagrange_top(); every member is read-only data for callers (units as noted), the
-/// `detail` block is the evaluator's own and not part of the interface.
+/// `evaluator` is the evaluation's own and not part of the interface.
 struct LagrangeTop {
   double A = 0.0;    ///< kg m^2, transverse moment of inertia about O ((A + B)/2 of the body)
   double C = 0.0;    ///< kg m^2, axial moment of inertia about O
@@ -64,49 +69,12 @@ struct LagrangeTop {
   /// rad, increase of the spin angle psi (z-x-z Euler angles) over one nutation period.
   double spin_per_period = 0.0;
 
-  /// The evaluator's precomputed constants (not part of the interface).
-  struct Detail {
-    // The tilt: u = u_a + d sn^2(tau, k), tau = lambda t + tau0; 1 -+ u_{a,b} kept without
-    // cancellation (they vanish for a vertical passage).
-    double u0 = 1.0, u_a = 1.0, d = 0.0, lambda = 0.0, tau0 = 0.0;
-    double one_minus_a = 0.0, one_minus_b = 0.0, one_plus_a = 2.0, one_plus_b = 2.0;
-    double k = 0.0, kc2 = 1.0;  // modulus k and k'^2 = 1 - k^2, kept separately
-    double K = 0.0;             // the quarter period in tau (complete integral K(k))
-    bool periodic = false;      // K finite: reduce tau modulo 2K
-    // Jacobi sn, cn, dn: theta series in the nome q when q is small, else Landen descent.
-    int theta_terms = 0;            // 0: use the Landen descent
-    double theta_odd[8] = {};       // q^(n(n+1)), n = 0.. (theta_1, theta_2 without 2 q^(1/4))
-    double theta_even[8] = {};      // 2 q^(n^2), n = 1.. (theta_3, theta_4)
-    double sn_scale = 0.0, cn_scale = 0.0, dn_scale = 0.0, theta_freq = 0.0;
-    int landen_levels = 0;
-    double landen_ratio[16] = {};   // c_n / a_n of the AGM of (1, k'), n = 1..levels
-    double landen_scale = 0.0;      // 2^N a_N
-    // Elliptic integrals of the third kind for the poles of phi' at u = 1 (index 0) and
-    // u = -1 (index 1): J(tau) = int_0^tau dtau / (1 - n sn^2). mode 0: absent (coefficient
-    // 0), 1: direct, 2: n < 0 transformed to (k^2, 1). signed_form: the factor sqrt(1 -+ u)
-    // vanishes at a root (a vertical passage) and is carried with its sign: 0 no, 1 ~ sn, 2 ~ cn.
-    struct Pole {
-      int mode = 0;
-      int signed_form = 0;
-      double coefficient = 0.0;  // rad per unit J: (P or Q) / ((1 -+ u_a) lambda)
-      double residue = 0.0;      // rad/s: P = (a - b)/2 or Q = (a + b)/2
-      double n = 0.0, one_minus_n = 1.0;
-      double N = 0.0, one_minus_N = 1.0, c1 = 0.0, c2 = 0.0, c3 = 0.0, p2 = 0.0;
-      double complete2 = 0.0;    // 2 Pi(n, k): increase of J per period 2K
-    } pole[2];
-    double sqrt_abs_d = 0.0;
-    double spin_rate_linear = 0.0;  // rad/s: w3 - b, the part of psi' without poles
-    double phi_ref_cos = 1.0, phi_ref_sin = 0.0, psi_ref = 0.0;  // the state's rotation
-    double phi_per_period_mod = 0.0, psi_per_period_mod = 0.0;   // the increments mod 2 pi
-    // Constant tilt: phi' and psi' (rad/s), sin(tilt) at t = 0.
-    double phi_rate = 0.0, psi_rate = 0.0, sin_tilt0 = 0.0;
-    // The pole terms of phi and psi as Fourier sine series in pi tau / K (rad), when they
-    // converge within kMaxSeries terms and match the elliptic integrals at setup.
-    static constexpr int kMaxSeries = 64;
-    int series_terms = 0;
-    double phi_slope = 0.0, psi_slope = 0.0;  // rad per unit tau, the secular parts
-    double phi_series[kMaxSeries] = {}, psi_series[kMaxSeries] = {};
-  } detail;
+  /// The number of terms of those series (0 when fourier_series is false).
+  int series_terms = 0;
+
+  /// The evaluator's precomputed constants (src/models/lagrange_evaluator.hpp; not part of the
+  /// interface, shared by copies, set by lagrange_top()).
+  std::shared_ptr<const detail::LagrangeEvaluator> evaluator;
 };
 
 /// How lagrange_top() prepares the evaluation.

@@ -20,7 +20,7 @@ struct LifetimeOptions {
   std::optional<double> horizon;
   /// rad, the tilt from the upward vertical past which the top has fallen (in (0, pi]).
   double max_tilt = 1.0;
-  NonlinearOptions integrator;  ///< the adaptive integrator's settings (its progress too)
+  Tolerances integrator;  ///< the adaptive integrator's settings (its progress too)
   /// Which integrator runs the body (any but the splitting, through simulate.hpp's one
   /// dispatch); dopri5 by default, as the command line's `lifetime` has always run.
   Integrator method = Integrator::Dopri5;

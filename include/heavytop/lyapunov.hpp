@@ -139,6 +139,6 @@ inline constexpr std::size_t kWanderMaxSteps = 2'000'000;
 /// `options` (max_steps capped at kWanderMaxSteps). Never throws for a valid body and state:
 /// a failure leaves max_tilt empty and says why in `note`.
 Wander axis_wander(const Body& body, const InitialState& initial, double horizon,
-                   const NonlinearOptions& options = {});
+                   const Tolerances& options = {});
 
 }  // namespace heavytop

@@ -22,10 +22,12 @@
 
 namespace heavytop {
 
-/// Settings of the nonlinear integrator. The defaults keep the angle error of a stable
-/// motion below 1e-9 rad over 100 s for every example in examples/ (measured in
-/// docs/nonlinear.md, "Accuracy"); in an unstable motion errors grow like the motion does.
-struct NonlinearOptions {
+/// The error control and the budget of the adaptive integrators of the nonlinear model
+/// (dopri5, dop853, taylor; simulate.hpp's SimulateOptions::adaptive), shared by all three.
+/// The defaults keep the angle error of a stable motion below 1e-9 rad over 100 s for every
+/// example in examples/ (measured in docs/nonlinear.md, "Accuracy"); in an unstable motion
+/// errors grow like the motion does.
+struct Tolerances {
   /// Relative tolerance per step (dimensionless), in [1e-15, 1].
   double rtol = 1e-12;
   /// Absolute tolerance per step, > 0: on the attitude quaternion (dimensionless), the
@@ -43,7 +45,10 @@ struct NonlinearOptions {
 };
 
 /// Throws InvalidInput (key "rtol", "atol" or "max_steps") unless options.IsValid().
-void validate(const NonlinearOptions& options);
+void validate(const Tolerances& options);
+
+/// The former name of Tolerances, for code written against heavytop 0.1.
+using NonlinearOptions [[deprecated("heavytop::NonlinearOptions is now heavytop::Tolerances")]] = Tolerances;
 
 /// What one run of the integrator did.
 struct NonlinearSummary {
@@ -86,7 +91,7 @@ ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState&
 /// the integrator cannot meet the tolerance, exceeds max_steps or the state stops being finite.
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
                               const std::vector<double>& times,
-                              const NonlinearOptions& options = {},
+                              const Tolerances& options = {},
                               NonlinearSummary* summary = nullptr);
 
 /// The extremes of the tilt acos(k_zeta) (rad, angle of the spin axis from the upward vertical).
@@ -108,12 +113,12 @@ struct TiltExtremes {
 /// maximum. Throws like simulate_nonlinear.
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                            double stop_above = std::numeric_limits<double>::infinity(),
-                           const NonlinearOptions& options = {},
+                           const Tolerances& options = {},
                            NonlinearSummary* summary = nullptr);
 
 /// rad, the largest tilt acos(k_zeta) over [0, horizon] (s), stopping early once it exceeds
 /// `stop_above` (rad; the result is then > stop_above). For stability sweeps.
 double max_tilt(const Body& body, const InitialState& initial, double horizon, double stop_above,
-                const NonlinearOptions& options = {});
+                const Tolerances& options = {});
 
 }  // namespace heavytop

@@ -76,25 +76,25 @@ inline constexpr double kAutoTaylorBelow = 1e-2;
 /// damped body (SPEC section 6) follows the same rule (the Taylor integrator holds its
 /// torques, taylor.hpp); a general body (SPEC section 11, general_body.hpp) gets Taylor, and a
 /// damped general body Dopri5 (which refuses it: the general body is integrated undamped).
-Integrator choose_integrator(const Body& body, const NonlinearOptions& tolerances);
+Integrator choose_integrator(const Body& body, const Tolerances& tolerances);
 
 /// The one dispatch of the integrators: the integrator that runs for `asked` with this body and
 /// these tolerances (Auto resolved by choose_integrator, every other one as asked).
-Integrator resolve_integrator(Integrator asked, const Body& body, const NonlinearOptions& tolerances);
+Integrator resolve_integrator(Integrator asked, const Body& body, const Tolerances& tolerances);
 
 /// tilt_extremes() (nonlinear.hpp) by any error-controlled integrator (`integrator` resolved
 /// by resolve_integrator; the splitting is refused, key "integrator"): Dopri5's and Dop853's
 /// scans on their dense output, Taylor's on its series (taylor_tilt_extremes, whose stop is
 /// the crossing itself). `summary`, if set, receives the run's work (Dopri5 and Taylor).
 TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
-                           double stop_above, const NonlinearOptions& tolerances,
+                           double stop_above, const Tolerances& tolerances,
                            NonlinearSummary* summary = nullptr);
 
 /// Settings of simulate(); each applies to the models named.
 struct SimulateOptions {
   LinearMethod method = LinearMethod::Analytic;  ///< first-order, body-fixed, linearized
   Integrator integrator = Integrator::Auto;      ///< nonlinear
-  NonlinearOptions adaptive;                     ///< nonlinear with Dopri5, Taylor, Dop853, Auto
+  Tolerances adaptive;                     ///< nonlinear with Dopri5, Taylor, Dop853, Auto
   SplittingOptions splitting;                    ///< nonlinear with Integrator::Splitting
   /// Called with the simulated time (s) as the work proceeds, if set; may throw to stop it.
   std::function<void(double)> progress;

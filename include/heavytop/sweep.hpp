@@ -65,7 +65,7 @@ struct SweepOptions {
   bool nonlinear = false;       ///< also judge each point by a nonlinear simulation
   double horizon = 100.0;       ///< s, simulated time of each nonlinear run (> 0)
   double max_tilt = 0.5;        ///< rad, the nonlinear run is "stable" if its tilt stays <= this
-  NonlinearOptions integrator;  ///< tolerances of the nonlinear runs
+  Tolerances integrator;  ///< tolerances of the nonlinear runs
   /// How the nonlinear runs are integrated (CLI --integrator): Auto and Taylor run the
   /// conservative principal-axes bodies through the batched Taylor integrator (batch.hpp,
   /// bit-identical to the unbatched one), Adaptive (dopri5) and Dop853 one point at a time;

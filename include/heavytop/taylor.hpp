@@ -54,7 +54,7 @@ TaylorVariables taylor_variables(const Body& body);
 /// eps = min(rtol, atol), k = 1 for the spin-factored variables and 0.75 for the plain ones
 /// (Jorba-Zou's optimum for a fixed radius of convergence is k = 1/2; these were measured
 /// faster at equal error, docs/integrators.md), clamped to [2, kTaylorMaxOrder].
-int taylor_order(const NonlinearOptions& options, TaylorVariables variables);
+int taylor_order(const Tolerances& options, TaylorVariables variables);
 
 /// What one run of the Taylor integrator did (NonlinearSummary's fields, with
 /// rhs_evaluations = steps x order: one pass of the recurrence per order, heyoka's count).
@@ -71,7 +71,7 @@ struct TaylorSummary {
 /// a step lost in the rounding of t, or a state that stops being finite.
 /// The tolerance is met per step componentwise: |error_i| <~ atol + rtol |x_i|.
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const NonlinearOptions& options = {}, TaylorSummary* summary = nullptr);
+                           const Tolerances& options = {}, TaylorSummary* summary = nullptr);
 
 /// tilt_extremes() by the Taylor method: the tilt extrema are the roots of the series of
 /// d(k_zeta)/dt on each step, the threshold crossing (tilt = stop_above, rad) the root of the
@@ -83,6 +83,6 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 /// ("horizon", "max_tilt") and failures as simulate_taylor().
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above = std::numeric_limits<double>::infinity(),
-                                  const NonlinearOptions& options = {}, TaylorSummary* summary = nullptr);
+                                  const Tolerances& options = {}, TaylorSummary* summary = nullptr);
 
 }  // namespace heavytop

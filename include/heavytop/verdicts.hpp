@@ -51,6 +51,6 @@ struct DecidedVerdict {
 /// `exceeded`), each computed as the file comment says, into out[i]. Every body must be
 /// batchable(); same units, keys and failures as batch_tilt_verdicts. max_tilt rad in (0, pi].
 void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                           double max_tilt, const NonlinearOptions& options, std::span<DecidedVerdict> out);
+                           double max_tilt, const Tolerances& options, std::span<DecidedVerdict> out);
 
 }  // namespace heavytop

@@ -57,7 +57,7 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
   require_positive("t_end", t_end);
   require_count("samples", samples, 3, static_cast<long long>(kMaxComparisonSamples));
   validate_horizon(body, state, t_end, "t_end");
-  NonlinearOptions options = tolerances(rtol, atol);
+  Tolerances options = tolerances(rtol, atol);
   options.progress = poll_signals();
   return from_json(without_gil([&] {
     return io::comparison_json(

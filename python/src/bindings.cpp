@@ -32,8 +32,8 @@ InitialState motion(double spin, double theta0, double phi0, double theta_rate0,
   return state;
 }
 
-NonlinearOptions tolerances(std::optional<double> rtol, std::optional<double> atol) {
-  NonlinearOptions options;
+Tolerances tolerances(std::optional<double> rtol, std::optional<double> atol) {
+  Tolerances options;
   if (rtol) options.rtol = *rtol;
   if (atol) options.atol = *atol;
   validate(options);

@@ -32,7 +32,7 @@ void validate_ordinary(const Body& body);
 InitialState motion(double spin, double theta0, double phi0, double theta_rate0, double phi_rate0);
 
 /// The nonlinear integrator's tolerances; None keeps the core's default (keys "rtol", "atol").
-NonlinearOptions tolerances(std::optional<double> rtol, std::optional<double> atol);
+Tolerances tolerances(std::optional<double> rtol, std::optional<double> atol);
 
 /// `value` must be finite and > 0 (key `key`: a keyword argument's name).
 void require_positive(const char* key, double value);

@@ -366,7 +366,7 @@ Figure plot_wander(const std::string& dir, const Body& body, std::optional<doubl
   const double critical = critical_spin.value_or(0.0);
   const double top = critical > 0.0 ? 2.0 * critical : 10.0 / (std::isfinite(gravity_time(body)) ? gravity_time(body) : 1.0);
   const int n = exact ? 400 : 40;  // the integrated curve costs a nonlinear run a point
-  NonlinearOptions options;
+  Tolerances options;
   options.rtol = options.atol = 1e-9;
   const double horizon = 50.0 * (std::isfinite(gravity_time(body)) ? gravity_time(body) : 1.0);
   std::string plot_list;

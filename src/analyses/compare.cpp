@@ -94,7 +94,7 @@ MotionFrequencies measure_frequencies(const Trajectory& tr) {
 }
 
 Comparison compare_models(const Body& body, const InitialState& state,
-                          const std::vector<double>& times, const NonlinearOptions& options) {
+                          const std::vector<double>& times, const Tolerances& options) {
   Comparison c;
   c.nonlinear = simulate_nonlinear(body, state, times, options, &c.summary);
   c.nonlinear_frequencies = measure_frequencies(c.nonlinear);

@@ -369,7 +369,7 @@ LyapunovStability analyse_lyapunov(const Body& body, double spin) {
 }
 
 Wander axis_wander(const Body& body, const InitialState& initial, double horizon,
-                   const NonlinearOptions& options) {
+                   const Tolerances& options) {
   Wander w;
   try {
     validate(body);
@@ -387,7 +387,7 @@ Wander axis_wander(const Body& body, const InitialState& initial, double horizon
     w.closed_form = false;
     w.horizon = horizon;
     if (!(std::isfinite(horizon) && horizon > 0.0)) throw InvalidInput("horizon", "must be a finite number > 0");
-    NonlinearOptions capped = options;
+    Tolerances capped = options;
     capped.max_steps = std::min(capped.max_steps, kWanderMaxSteps);
     w.max_tilt = tilt_extremes(Integrator::Dopri5, body, initial, horizon, std::numeric_limits<double>::infinity(), capped)
                     .max_tilt;

@@ -34,7 +34,7 @@ struct Group {
 }  // namespace
 
 void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                           double max_tilt, const NonlinearOptions& options, std::span<DecidedVerdict> out) {
+                           double max_tilt, const Tolerances& options, std::span<DecidedVerdict> out) {
   if (bodies.size() != initials.size() || bodies.size() != out.size())
     throw InvalidInput("bodies", "bodies, initial states and results must be as many");
   validate(options);
@@ -62,7 +62,7 @@ void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const Initial
 
   // 2. The loose pass with its band.
   if (!loose.bodies.empty()) {
-    NonlinearOptions o = options;
+    Tolerances o = options;
     o.rtol = o.atol = kLooseTolerance;
     const double band = std::min(kBand, 0.5 * max_tilt);
     std::vector<TiltBand> r(loose.bodies.size());

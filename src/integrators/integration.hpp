@@ -242,7 +242,7 @@ inline AxisAngles axis_angles_of(const RigidBodyState& rb) {
 // state), the weights kept away from 0 (a tiny atol on a zero component) so that the ratio
 // stays finite; 1e-6 s when either is ~0; at most the horizon.
 template <class State>
-double first_step_guess(const State& x, const State& dxdt, const NonlinearOptions& o, double horizon) {
+double first_step_guess(const State& x, const State& dxdt, const Tolerances& o, double horizon) {
   double largest = 0.0;
   for (double v : x) largest = std::max(largest, std::abs(v));
   double d0 = 0.0, d1 = 0.0;

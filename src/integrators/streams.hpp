@@ -10,19 +10,19 @@
 namespace heavytop::detail {
 
 void stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,
-                      const NonlinearOptions& options, NonlinearSummary* summary);
+                      const Tolerances& options, NonlinearSummary* summary);
 
 void stream_splitting(const Body& body, const InitialState& initial, const SampleStream& samples,
                       const SplittingOptions& options, SplittingSummary* summary);
 
 void stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
-                   const NonlinearOptions& options, TaylorSummary* summary);
+                   const Tolerances& options, TaylorSummary* summary);
 
 // The general body (SPEC section 11), general_body.cpp: the conservative body only.
 void stream_general(const Body& body, const InitialState& initial, const SampleStream& samples,
-                    const NonlinearOptions& options, NonlinearSummary* summary);
+                    const Tolerances& options, NonlinearSummary* summary);
 
 void stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
-                   const NonlinearOptions& options, NonlinearSummary* summary);
+                   const Tolerances& options, NonlinearSummary* summary);
 
 }  // namespace heavytop::detail

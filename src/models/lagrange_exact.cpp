@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <memory>
 
 #include <stdexcept>
 
@@ -12,6 +13,8 @@
 #include <boost/math/special_functions/ellint_rj.hpp>
 
 #include "integrators/integration.hpp"
+#include "math/elliptic.hpp"
+#include "models/lagrange_evaluator.hpp"
 
 namespace heavytop {
 
@@ -49,102 +52,10 @@ double rj(double x, double y, double z, double p) {
   }
 }
 
-using Detail = LagrangeTop::Detail;
-using Pole = LagrangeTop::Detail::Pole;
+using Detail = detail::LagrangeEvaluator;
+using Pole = Detail::Pole;
+using Jacobi = detail::JacobiValues;
 using Complex = std::complex<double>;
-
-// ---- Jacobi elliptic functions ----------------------------------------------------------------
-
-struct Jacobi {
-  double sn, cn, dn;
-  double cos2v = 1.0, sin2v = 0.0;  // cos, sin of pi r / K (theta path only)
-};
-
-// Theta series (DLMF 22.2.4) with the common factor 2 q^(1/4) of theta_1, theta_2 divided
-// out: a handful of terms for q <= 0.3, no cancellation since theta_4 >= 1 - 2q > 0.
-Jacobi jacobi_theta(const Detail& d, double r) {
-  const double v = d.theta_freq * r;
-  const Complex z1(std::cos(v), std::sin(v));
-  const Complex w = z1 * z1;
-  Complex odd = z1, even = w;
-  double t1 = 0.0, t2 = 0.0, t3 = 1.0, t4 = 1.0, sign = 1.0;
-  for (int n = 0; n < d.theta_terms; ++n) {
-    t1 += sign * d.theta_odd[n] * odd.imag();
-    t2 += d.theta_odd[n] * odd.real();
-    t3 += d.theta_even[n] * even.real();
-    t4 -= sign * d.theta_even[n] * even.real();
-    sign = -sign;
-    odd *= w;
-    even *= w;
-  }
-  const double inv4 = 1.0 / t4;
-  return {d.sn_scale * t1 * inv4, d.cn_scale * t2 * inv4, d.dn_scale * t3 * inv4, w.real(),
-          w.imag()};
-}
-
-// Descending Landen transformation (A&S 16.4) on the AGM of (1, k') precomputed from k'^2,
-// which stays accurate as k -> 1 where q -> 1 and the theta series would need many terms.
-Jacobi jacobi_landen(const Detail& d, double r) {
-  if (d.kc2 == 0.0) {  // k = 1: the separatrix
-    const double sech = 1.0 / std::cosh(r);
-    return {std::tanh(r), sech, sech, 1.0, 0.0};
-  }
-  double phi = d.landen_scale * r;
-  for (int n = d.landen_levels; n >= 1; --n)
-    phi = 0.5 * (phi + std::asin(d.landen_ratio[n - 1] * std::sin(phi)));
-  const double sn = std::sin(phi), cn = std::cos(phi);
-  return {sn, cn, std::sqrt(cn * cn + d.kc2 * sn * sn), 1.0, 0.0};
-}
-
-Jacobi jacobi(const Detail& d, double r) {
-  return d.theta_terms > 0 ? jacobi_theta(d, r) : jacobi_landen(d, r);
-}
-
-// K(k) from the AGM of (1, k') (and the Landen table), K'(k), and the theta coefficients.
-void prepare_jacobi(Detail& d) {
-  // AGM of (1, k'), with c_{n+1} = c_n^2 / (4 a_{n+1}) to avoid the cancellation in a - b.
-  double a = 1.0, b = std::sqrt(d.kc2), c = d.k;
-  int levels = 0;
-  while (c > kEps * a && levels < 16 && b > 0.0) {
-    const double a1 = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    c = c * c / (4.0 * a1);
-    a = a1;
-    d.landen_ratio[levels++] = c / a;
-  }
-  d.landen_levels = levels;
-  d.landen_scale = std::ldexp(a, levels);
-  d.periodic = d.kc2 > 0.0;
-  d.K = d.periodic ? kPi / (2.0 * a) : kInf;
-
-  d.theta_terms = 0;
-  if (!d.periodic) return;
-  // Nome q = exp(-pi K'/K), K' from the AGM of (1, k).
-  double a2 = 1.0, b2 = d.k;
-  for (int i = 0; i < 64 && std::abs(a2 - b2) > kEps * a2; ++i) {
-    const double a1 = 0.5 * (a2 + b2);
-    b2 = std::sqrt(a2 * b2);
-    a2 = a1;
-  }
-  const double q = b2 > 0.0 ? std::exp(-kPi * (kPi / (2.0 * a2)) / d.K) : 0.0;
-  if (q > 0.3) return;  // Landen descent instead
-  // Terms n = 0..M; the first left out, q^((M+1)(M+2)), is below 2^-60.
-  int m = 0;
-  while (m < 7 && q > 0.0 && std::pow(q, (m + 1) * (m + 2)) > 0x1p-60) ++m;
-  d.theta_terms = m + 1;
-  double t2_0 = 0.0, t3_0 = 1.0, t4_0 = 1.0;
-  for (int n = 0; n <= m; ++n) {
-    d.theta_odd[n] = q > 0.0 ? std::pow(q, n * (n + 1)) : (n == 0 ? 1.0 : 0.0);
-    d.theta_even[n] = q > 0.0 ? 2.0 * std::pow(q, (n + 1) * (n + 1)) : 0.0;
-    t2_0 += d.theta_odd[n];
-    t3_0 += d.theta_even[n];
-    t4_0 += ((n % 2 == 0) ? -1.0 : 1.0) * d.theta_even[n];
-  }
-  d.sn_scale = t3_0 / t2_0;
-  d.cn_scale = t4_0 / t2_0;
-  d.dn_scale = t4_0 / t3_0;
-  d.theta_freq = kPi / (2.0 * d.K);
-}
 
 // ---- Elliptic integrals of the third kind -----------------------------------------------------
 
@@ -179,9 +90,9 @@ double sine_series(const double* b, int n, double cos_x, double sin_x) {
 
 // 2 Pi(n, k), the increase of J over a period 2K.
 double third_kind_complete2(const Pole& p, const Detail& d) {
-  if (p.mode == 1) return 2.0 * (d.K + p.n * rj(0.0, d.kc2, 1.0, p.one_minus_n) / 3.0);
-  const double pi_n = p.c1 != 0.0 ? d.K + p.N * rj(0.0, d.kc2, 1.0, p.one_minus_N) / 3.0 : 0.0;
-  return 2.0 * (p.c1 * pi_n + p.c2 * d.K);
+  if (p.mode == 1) return 2.0 * (d.jacobi.K + p.n * rj(0.0, d.jacobi.kc2, 1.0, p.one_minus_n) / 3.0);
+  const double pi_n = p.c1 != 0.0 ? d.jacobi.K + p.N * rj(0.0, d.jacobi.kc2, 1.0, p.one_minus_N) / 3.0 : 0.0;
+  return 2.0 * (p.c1 * pi_n + p.c2 * d.jacobi.K);
 }
 
 // The pole of phi' at u = +-1: phi' = P/(1 - u) + Q/(1 + u). `one_a`, `one_b` are 1 -+ u at
@@ -208,15 +119,15 @@ void prepare_pole(Pole& p, double residue, double one_a, double one_b, double si
     p.mode = 1;
   } else {
     p.mode = 2;
-    const double m = -p.n, k2 = d.k * d.k;
+    const double m = -p.n, k2 = d.jacobi.k * d.jacobi.k;
     p.N = (k2 + m) / (1.0 + m);
-    p.one_minus_N = d.kc2 / (1.0 + m);
-    p.c1 = m * d.kc2 / ((1.0 + m) * (m + k2));
+    p.one_minus_N = d.jacobi.kc2 / (1.0 + m);
+    p.c1 = m * d.jacobi.kc2 / ((1.0 + m) * (m + k2));
     p.c2 = k2 / (k2 + m);
     p.c3 = std::sqrt(m / ((k2 + m) * (1.0 + m)));
     p.p2 = std::sqrt(m * p.N);
   }
-  if (d.periodic) p.complete2 = third_kind_complete2(p, d);
+  if (d.jacobi.periodic) p.complete2 = third_kind_complete2(p, d);
 }
 
 // ---- Roots of the cubic -----------------------------------------------------------------------
@@ -272,7 +183,7 @@ double turning_root(const Poly& g, double e, bool end_is_root, double slope_end)
 // rounding level within kMaxSeries terms and matches the elliptic integrals off the grid.
 void prepare_series(Detail& d) {
   d.series_terms = 0;
-  if (!d.periodic || d.theta_terms == 0 || (!d.pole[0].mode && !d.pole[1].mode)) return;
+  if (!d.jacobi.periodic || d.jacobi.theta_terms == 0 || (!d.pole[0].mode && !d.pole[1].mode)) return;
   constexpr int kM = 4 * Detail::kMaxSeries;  // samples per period: aliasing from j >= 3 kMax
   constexpr int kJ = Detail::kMaxSeries;
   auto integrand = [&](const Pole& p, const Jacobi& j) {
@@ -287,7 +198,7 @@ void prepare_series(Detail& d) {
   }();
   std::array<double, kM> f_phi{}, f_psi{};
   for (int i = 0; i < kM; ++i) {
-    const Jacobi j = jacobi(d, d.K * (-1.0 + 2.0 * i / kM));
+    const Jacobi j = d.jacobi(d.jacobi.K * (-1.0 + 2.0 * i / kM));
     const double g0 = d.pole[0].coefficient * integrand(d.pole[0], j);
     const double g1 = d.pole[1].coefficient * integrand(d.pole[1], j);
     f_phi[i] = g0 + g1;
@@ -303,7 +214,7 @@ void prepare_series(Detail& d) {
       a_psi += f_psi[i] * c;
     }
     const double sign = (j % 2 == 0) ? 1.0 : -1.0;
-    const double to_sine = sign * (2.0 / kM) * d.K / (j * kPi);
+    const double to_sine = sign * (2.0 / kM) * d.jacobi.K / (j * kPi);
     d.phi_series[j - 1] = a_phi * to_sine;
     d.psi_series[j - 1] = a_psi * to_sine;
     scale = std::max({scale, std::abs(d.phi_series[j - 1]), std::abs(d.psi_series[j - 1])});
@@ -316,13 +227,13 @@ void prepare_series(Detail& d) {
     --terms;
   if (terms >= kJ - 4) return;  // not converged: the elliptic integrals stay
   d.phi_slope = (d.pole[0].coefficient * d.pole[0].complete2 +
-                 d.pole[1].coefficient * d.pole[1].complete2) / (2.0 * d.K);
+                 d.pole[1].coefficient * d.pole[1].complete2) / (2.0 * d.jacobi.K);
   d.psi_slope = (d.pole[1].coefficient * d.pole[1].complete2 -
-                 d.pole[0].coefficient * d.pole[0].complete2) / (2.0 * d.K);
+                 d.pole[0].coefficient * d.pole[0].complete2) / (2.0 * d.jacobi.K);
   // Check against the integrals off the grid.
   for (int i = 0; i < 11; ++i) {
-    const double r = d.K * (-1.0 + (2.0 * i + 0.731) / 11.0);
-    const Jacobi j = jacobi(d, r);
+    const double r = d.jacobi.K * (-1.0 + (2.0 * i + 0.731) / 11.0);
+    const Jacobi j = d.jacobi(r);
     const double a0 = d.pole[0].mode ? d.pole[0].coefficient * third_kind(d.pole[0], r, j) : 0.0;
     const double a1 = d.pole[1].mode ? d.pole[1].coefficient * third_kind(d.pole[1], r, j) : 0.0;
     const double phi = d.phi_slope * r + sine_series(d.phi_series, terms, j.cos2v, j.sin2v);
@@ -364,12 +275,12 @@ Canonical canonical(const Detail& d, double t) {
   // Whole periods out: tau = r + 2 K N with |r| <= K; the cost does not depend on t.
   const double tau = std::fma(d.lambda, t, d.tau0);
   double periods = 0.0, r = tau;
-  if (d.periodic) {
-    periods = std::nearbyint(tau / (2.0 * d.K));
-    r = std::fma(-2.0 * d.K, periods, tau);
+  if (d.jacobi.periodic) {
+    periods = std::nearbyint(tau / (2.0 * d.jacobi.K));
+    r = std::fma(-2.0 * d.jacobi.K, periods, tau);
   }
   const double parity = std::fmod(periods, 2.0) == 0.0 ? 1.0 : -1.0;  // sn, cn flip per period
-  const Jacobi j = jacobi(d, r);
+  const Jacobi j = d.jacobi(r);
   const double s2 = j.sn * j.sn, c2 = j.cn * j.cn;
   c.u = d.u_a + d.d * s2;
   c.du = 2.0 * d.d * d.lambda * j.sn * j.cn * j.dn;
@@ -490,7 +401,8 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
   require_finite_state(state);
 
   LagrangeTop top;
-  Detail& d = top.detail;
+  const auto evaluator = std::make_shared<Detail>();
+  Detail& d = *evaluator;
   top.A = 0.5 * (body.A + body.B);
   top.C = body.C;
   top.mgR = body.mgR();
@@ -605,9 +517,7 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
     k2 = std::clamp(k2, 0.0, 1.0);
     kc2 = std::clamp(kc2, 0.0, 1.0);
     if (k2 < kc2) kc2 = 1.0 - k2; else k2 = 1.0 - kc2;
-    d.k = std::sqrt(k2);
-    d.kc2 = kc2;
-    prepare_jacobi(d);
+    d.jacobi = detail::JacobiElliptic(std::sqrt(k2), kc2);
 
     // tau0: sn^2(tau0) = (u0 - u_a)/(u_b - u_a), with the sign of the motion of u.
     const double sa = std::sqrt(std::abs(x_a) / std::abs(d.d));
@@ -617,8 +527,8 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
 
     prepare_pole(d.pole[0], P, d.one_minus_a, d.one_minus_b, -d.d, d);
     prepare_pole(d.pole[1], Q, d.one_plus_a, d.one_plus_b, d.d, d);
-    if (d.periodic) {
-      top.nutation_period = 2.0 * d.K / d.lambda;
+    if (d.jacobi.periodic) {
+      top.nutation_period = 2.0 * d.jacobi.K / d.lambda;
       top.precession_per_period = d.pole[0].coefficient * d.pole[0].complete2 +
                                   d.pole[1].coefficient * d.pole[1].complete2;
       top.spin_per_period = d.spin_rate_linear * top.nutation_period -
@@ -635,6 +545,7 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
       }
       if (options.fourier_series) prepare_series(d);
       top.fourier_series = d.series_terms > 0;
+      top.series_terms = d.series_terms;
     } else {
       top.nutation_period = kInf;
     }
@@ -661,11 +572,12 @@ LagrangeTop lagrange_top(const Body& body, const RigidBodyState& state,
   const Eigen::Matrix3d m0 = euler_zxz(e_phi0, a0.c.sigma, a0.c.u, a0.c.psi);
   const Eigen::Matrix3d x = m0.transpose() * state.attitude;
   d.psi_ref = std::atan2(x(1, 0) - x(0, 1), x(0, 0) + x(1, 1));
+  top.evaluator = evaluator;
   return top;
 }
 
 NutationBounds nutation_bounds(const LagrangeTop& top) {
-  const Detail& d = top.detail;
+  const Detail& d = detail::evaluator_of(top);
   NutationBounds n;
   n.u_min = top.u_min;
   n.u_max = top.u_max;
@@ -686,17 +598,17 @@ NutationBounds nutation_bounds(const LagrangeTop& top) {
 double nutation_period(const LagrangeTop& top) { return top.nutation_period; }
 
 AxisMotion lagrange_axis(const LagrangeTop& top, double t) {
-  const AxisFull a = axis_full<false>(top.detail, t);
+  const AxisFull a = axis_full<false>(detail::evaluator_of(top), t);
   return {a.k, a.k_rate};
 }
 
 AxisAngles lagrange_axis_angles(const LagrangeTop& top, double t) {
-  const AxisFull a = axis_full<false>(top.detail, t);
+  const AxisFull a = axis_full<false>(detail::evaluator_of(top), t);
   return axis_angles(a.k, a.k_rate);
 }
 
 RigidBodyState lagrange_rigid_body_state(const LagrangeTop& top, double t) {
-  const Detail& d = top.detail;
+  const Detail& d = detail::evaluator_of(top);
   const AxisFull a = axis_full(d, t);
   RigidBodyState s;
   s.attitude = euler_zxz(a.e_phi, a.c.sigma, a.c.u, a.c.psi + d.psi_ref);

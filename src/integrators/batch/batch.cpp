@@ -92,7 +92,7 @@ namespace {
 // Both entry points: validation as taylor_tilt_extremes() does it, the two groups of
 // variables, the kernel of `isa`; results into `results` (grid order).
 void scan(std::span<const Body> bodies, std::span<const InitialState> initials, std::size_t outputs, double horizon,
-          double stop_above, const NonlinearOptions& options, BatchIsa isa, bool extremes,
+          double stop_above, const Tolerances& options, BatchIsa isa, bool extremes,
           std::vector<detail::BatchResult>& results, double band_low = 0.0) {
   if (bodies.size() != initials.size() || bodies.size() != outputs)
     throw InvalidInput("bodies", "bodies, initial states and results must be as many");
@@ -137,12 +137,12 @@ void scan(std::span<const Body> bodies, std::span<const InitialState> initials, 
 }  // namespace
 
 void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out) {
+                         double stop_above, const Tolerances& options, std::span<TiltExtremes> out) {
   batch_tilt_extremes(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
 }
 
 void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                         double stop_above, const NonlinearOptions& options, std::span<TiltExtremes> out,
+                         double stop_above, const Tolerances& options, std::span<TiltExtremes> out,
                          BatchIsa isa) {
   std::vector<detail::BatchResult> results;
   scan(bodies, initials, out.size(), horizon, stop_above, options, isa, true, results);
@@ -155,12 +155,12 @@ void batch_tilt_extremes(std::span<const Body> bodies, std::span<const InitialSt
 }
 
 void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                         double stop_above, const NonlinearOptions& options, std::span<TiltVerdict> out) {
+                         double stop_above, const Tolerances& options, std::span<TiltVerdict> out) {
   batch_tilt_verdicts(bodies, initials, horizon, stop_above, options, out, best_batch_isa());
 }
 
 void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                         double stop_above, const NonlinearOptions& options, std::span<TiltVerdict> out,
+                         double stop_above, const Tolerances& options, std::span<TiltVerdict> out,
                          BatchIsa isa) {
   std::vector<detail::BatchResult> results;
   scan(bodies, initials, out.size(), horizon, stop_above, options, isa, false, results);
@@ -168,12 +168,12 @@ void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialSt
 }
 
 void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                      double low, double high, const NonlinearOptions& options, std::span<TiltBand> out) {
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out) {
   batch_tilt_bands(bodies, initials, horizon, low, high, options, out, best_batch_isa());
 }
 
 void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
-                      double low, double high, const NonlinearOptions& options, std::span<TiltBand> out,
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out,
                       BatchIsa isa) {
   if (!(low > 0.0 && low < high)) throw InvalidInput("max_tilt", "the band's low tilt must be in (0, high)");
   std::vector<detail::BatchResult> results;

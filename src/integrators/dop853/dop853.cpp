@@ -33,7 +33,7 @@ constexpr int kN = 7;
 class Dop853 {
  public:
   using State = heavytop::State;
-  Dop853(const Body& body, const State& x0, double horizon, const NonlinearOptions& options,
+  Dop853(const Body& body, const State& x0, double horizon, const Tolerances& options,
          NonlinearSummary* summary)
       : body_(body), system_{body}, rtol_(options.rtol), atol_(options.atol), horizon_(horizon),
         max_steps_(options.max_steps), summary_(summary), y_(x0) {
@@ -245,7 +245,7 @@ struct TiltOf {
 // nonlinear.cpp's scan_tilt on DOP853's dense output: extrema at the roots of d(k_zeta)/dt,
 // the crossing of stop_above located by TOMS 748.
 TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
-                       const NonlinearOptions& options) {
+                       const Tolerances& options) {
   TiltExtremes e;
   e.min_tilt = e.max_tilt = TiltOf(x0).tilt();
   e.exceeded = e.max_tilt > stop_above;
@@ -259,7 +259,7 @@ TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double
 }  // namespace
 
 TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial, double horizon, double stop_above,
-                                  const NonlinearOptions& options) {
+                                  const Tolerances& options) {
   validate(body);
   refuse_general(body, "dop853 (use dopri5 or auto)");
   detail::refuse_damping(body, "dop853");
@@ -271,7 +271,7 @@ TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial,
 }
 
 void detail::stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
-                           const NonlinearOptions& options, NonlinearSummary* summary) {
+                           const Tolerances& options, NonlinearSummary* summary) {
   validate(body);
   refuse_general(body, "dop853 (use dopri5 or auto)");
   detail::refuse_damping(body, "dop853");
@@ -288,7 +288,7 @@ void detail::stream_dop853(const Body& body, const InitialState& initial, const 
 }
 
 Trajectory simulate_dop853(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const NonlinearOptions& options, NonlinearSummary* summary) {
+                           const Tolerances& options, NonlinearSummary* summary) {
   return gathered(times, [&](const SampleStream& samples) {
     detail::stream_dop853(body, initial, samples, options, summary);
   });

@@ -88,7 +88,7 @@ namespace {
 namespace odeint = boost::numeric::odeint;
 using State = RigidBodyVector;
 
-void check_general(const Body& body, const NonlinearOptions& options) {
+void check_general(const Body& body, const Tolerances& options) {
   validate(body);
   validate(options);
   refuse_damped_general(body);
@@ -102,7 +102,7 @@ class GeneralIntegrator {
   using Stepper = odeint::runge_kutta_dopri5<State>;
   using Controlled = odeint::controlled_runge_kutta<Stepper>;
 
-  GeneralIntegrator(const Body& body, const RigidBodyState& x0, double horizon, const NonlinearOptions& options,
+  GeneralIntegrator(const Body& body, const RigidBodyState& x0, double horizon, const Tolerances& options,
                     NonlinearSummary* summary)
       : body_(body), system_(body), controlled_(Controlled::error_checker_type(options.atol, options.rtol)),
         max_steps_(options.max_steps), summary_(summary), x_(to_vector(x0)) {
@@ -142,7 +142,7 @@ class GeneralIntegrator {
   }
 
  private:
-  double initial_step(const NonlinearOptions& o, double horizon) const {
+  double initial_step(const Tolerances& o, double horizon) const {
     return first_step_guess(x_, dxdt_, o, horizon);
   }
 
@@ -173,7 +173,7 @@ class GeneralIntegrator {
 }  // namespace
 
 std::vector<RigidBodyState> integrate_general_body(const Body& body, const RigidBodyState& x0,
-                                                   const std::vector<double>& times, const NonlinearOptions& options,
+                                                   const std::vector<double>& times, const Tolerances& options,
                                                    NonlinearSummary* summary) {
   check_general(body, options);
   validate_times(times);
@@ -185,7 +185,7 @@ std::vector<RigidBodyState> integrate_general_body(const Body& body, const Rigid
 }
 
 void detail::stream_general(const Body& body, const InitialState& initial, const SampleStream& samples,
-                            const NonlinearOptions& options, NonlinearSummary* summary) {
+                            const Tolerances& options, NonlinearSummary* summary) {
   check_general(body, options);
   validate(initial);
   const RigidBodyState x0 = initial_rigid_body_state(initial);
@@ -198,7 +198,7 @@ void detail::stream_general(const Body& body, const InitialState& initial, const
 }
 
 Trajectory simulate_general_body(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                                 const NonlinearOptions& options, NonlinearSummary* summary) {
+                                 const Tolerances& options, NonlinearSummary* summary) {
   return gathered(times, [&](const SampleStream& samples) {
     detail::stream_general(body, initial, samples, options, summary);
   });

@@ -202,7 +202,7 @@ double tilt_cos_rate(const S& x) {
 
 // ---- Options --------------------------------------------------------------------------------
 
-Violation first_violation(const NonlinearOptions& o) {
+Violation first_violation(const Tolerances& o) {
   if (!(std::isfinite(o.rtol) && o.rtol >= 1e-15 && o.rtol <= 1.0))
     return std::pair{"rtol", "must be a finite number in [1e-15, 1]"};
   if (!(std::isfinite(o.atol) && o.atol > 0.0))
@@ -249,7 +249,7 @@ class Integrator {
   using Stepper = odeint::runge_kutta_dopri5<State>;
   using Controlled = odeint::controlled_runge_kutta<Stepper>;
 
-  Integrator(const Body& body, const State& x0, double horizon, const NonlinearOptions& options,
+  Integrator(const Body& body, const State& x0, double horizon, const Tolerances& options,
              NonlinearSummary* summary)
       : body_(body),
         equations_(body),
@@ -373,7 +373,7 @@ class Integrator {
     controlled_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, end_x_, end_dxdt_, end_t_);
   }
 
-  double initial_step(const NonlinearOptions& o, double horizon) const {
+  double initial_step(const Tolerances& o, double horizon) const {
     return first_step_guess(x_, dxdt_, o, horizon);
   }
 
@@ -419,7 +419,7 @@ class Integrator {
 
 template <bool Symmetric, bool Damped>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
-              const NonlinearOptions& options, NonlinearSummary* summary) {
+              const Tolerances& options, NonlinearSummary* summary) {
   using State = StateOf<Damped>;
   const double horizon = samples.horizon();
   Integrator<Symmetric, Damped> integrator(body, to_state<State>(rb0), horizon, options, summary);
@@ -435,7 +435,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
 
 template <bool Symmetric, bool Damped>
 TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
-                       const NonlinearOptions& options, NonlinearSummary* summary) {
+                       const Tolerances& options, NonlinearSummary* summary) {
   using State = StateOf<Damped>;
   const State x0 = to_state<State>(rb0);
   TiltExtremes e;
@@ -456,11 +456,11 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
 
 // ---- Public API -------------------------------------------------------------------------------
 
-bool NonlinearOptions::IsValid(std::string* why) const {
+bool Tolerances::IsValid(std::string* why) const {
   return is_valid(first_violation(*this), why);
 }
 
-void validate(const NonlinearOptions& options) { throw_if_invalid(first_violation(options)); }
+void validate(const Tolerances& options) { throw_if_invalid(first_violation(options)); }
 
 std::string NonlinearSummary::BriefReport() const {
   return fmt::format("nonlinear: {} steps ({} rejected), {} evaluations, t = {:.6g} s, {}", steps,
@@ -473,7 +473,7 @@ ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState&
 }
 
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
-                              const std::vector<double>& times, const NonlinearOptions& options,
+                              const std::vector<double>& times, const Tolerances& options,
                               NonlinearSummary* summary) {
   return gathered(times, [&](const SampleStream& samples) {
     detail::stream_nonlinear(body, initial, samples, options, summary);
@@ -481,7 +481,7 @@ Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
 }
 
 void detail::stream_nonlinear(const Body& body, const InitialState& initial, const SampleStream& samples,
-                              const NonlinearOptions& options, NonlinearSummary* summary) {
+                              const Tolerances& options, NonlinearSummary* summary) {
   validate(body);
   refuse_general(body, "this principal-axes integrator (simulate() and simulate_general_body() take it)");
   validate(initial);
@@ -500,7 +500,7 @@ void detail::stream_nonlinear(const Body& body, const InitialState& initial, con
 }
 
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
-                           double stop_above, const NonlinearOptions& options,
+                           double stop_above, const Tolerances& options,
                            NonlinearSummary* summary) {
   validate(body);
   refuse_general(body, "the tilt scan (sweep, lifetime, the wander)");
@@ -519,7 +519,7 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
 }
 
 double max_tilt(const Body& body, const InitialState& initial, double horizon, double stop_above,
-                const NonlinearOptions& options) {
+                const Tolerances& options) {
   return tilt_extremes(body, initial, horizon, stop_above, options).max_tilt;
 }
 

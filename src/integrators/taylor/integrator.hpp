@@ -30,7 +30,7 @@ class TaylorIntegrator {
   using Jet = JetOf<W>;
 
   TaylorIntegrator(const Body& body, const System& system, const State& x0, double horizon,
-                   const NonlinearOptions& options, TaylorSummary* summary)
+                   const Tolerances& options, TaylorSummary* summary)
       : body_(body),
         system_(system),
         order_(taylor_order(options, System::kVariables)),

@@ -29,7 +29,7 @@ using namespace detail::taylor;
 
 template <class System>
 void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& samples,
-              const NonlinearOptions& options, TaylorSummary* summary) {
+              const Tolerances& options, TaylorSummary* summary) {
   using State = typename TaylorIntegrator<System>::State;
   const double horizon = samples.horizon();
   TaylorIntegrator<System> integrator(body, System(body), System::state_of(rb0), horizon, options, summary);
@@ -60,7 +60,7 @@ double polynomial_root(const Coefficients& s, int p, double a, double b, double 
 
 template <class System>
 TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
-                       const NonlinearOptions& options, TaylorSummary* summary) {
+                       const Tolerances& options, TaylorSummary* summary) {
   using Integrator = TaylorIntegrator<System>;
   TiltExtremes e;
   if (summary) *summary = TaylorSummary{};
@@ -153,7 +153,7 @@ TaylorVariables taylor_variables(const Body& body) {
   return body.A == body.B ? TaylorVariables::SpinFactored : TaylorVariables::Plain;
 }
 
-int taylor_order(const NonlinearOptions& options, TaylorVariables variables) {
+int taylor_order(const Tolerances& options, TaylorVariables variables) {
   // Jorba & Zou's ceil(-ln(eps)/2 + 1) is optimal for a series with a fixed radius of
   // convergence; here the coefficients fall faster (the steps grew about as the order did), and
   // at equal error on five bodies (docs/integrators.md, "Order and step") higher orders were
@@ -166,7 +166,7 @@ int taylor_order(const NonlinearOptions& options, TaylorVariables variables) {
 }
 
 void detail::stream_taylor(const Body& body, const InitialState& initial, const SampleStream& samples,
-                           const NonlinearOptions& options, TaylorSummary* summary) {
+                           const Tolerances& options, TaylorSummary* summary) {
   validate(body);
   validate(initial);
   validate(options);
@@ -181,14 +181,14 @@ void detail::stream_taylor(const Body& body, const InitialState& initial, const 
 }
 
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const NonlinearOptions& options, TaylorSummary* summary) {
+                           const Tolerances& options, TaylorSummary* summary) {
   return gathered(times, [&](const SampleStream& samples) {
     detail::stream_taylor(body, initial, samples, options, summary);
   });
 }
 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
-                                  double stop_above, const NonlinearOptions& options, TaylorSummary* summary) {
+                                  double stop_above, const Tolerances& options, TaylorSummary* summary) {
   validate(body);
   validate(initial);
   validate(options);
