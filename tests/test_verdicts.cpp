@@ -47,8 +47,8 @@ struct Outcome {
 };
 
 // The decided verdicts against the default pass's, and who decided them.
-Outcome compare(const Grid& g, double horizon, double max_tilt) {
-  const Tolerances o;  // the sweep's default, 1e-12
+Outcome compare(const Grid& g, double horizon, double max_tilt, const Tolerances& o = Tolerances{}) {
+  // o: the sweep's tolerance (its default 1e-12 unless given)
   std::vector<TiltVerdict> reference(g.bodies.size());
   batch_tilt_verdicts(g.bodies, g.states, horizon, max_tilt, o, reference);
   std::vector<DecidedVerdict> got(g.bodies.size());
@@ -74,7 +74,8 @@ Outcome compare(const Grid& g, double horizon, double max_tilt) {
 // Every example configuration with a [body] (mesh-top's parts are integrated as a general
 // body, which the batch does not take): its map over spin and C/A around its own values (the
 // plate's over B/A x spin, docs/commands.md's map), 12 x 12 points, horizon 50 s, max tilt
-// 0.5 rad (the horizontal gyroscope starts at pi/2: its own tilt + 0.5).
+// 0.5 rad (the horizontal gyroscope starts at pi/2: its own tilt + 0.5); at the sweep's
+// default tolerance and at 1e-9.
 TEST(DecidedVerdicts, EqualTheDefaultPassOnEveryExampleMap) {
   std::size_t maps = 0, points = 0, by_default = 0;
   for (const auto& entry : std::filesystem::directory_iterator(HEAVYTOP_EXAMPLES)) {
@@ -93,9 +94,14 @@ TEST(DecidedVerdicts, EqualTheDefaultPassOnEveryExampleMap) {
               parse_sweep_axis("spin=" + std::to_string(0.3 * s.spin) + ":" + std::to_string(2.0 * s.spin) + ":12")};
     }
     const double max_tilt = std::max(0.5, tilt(s.theta0, s.phi0) + 0.5);
-    const Outcome o = compare(grid(b, s, axes), 50.0, max_tilt);
+    const Grid g = grid(b, s, axes);
+    const Outcome o = compare(g, 50.0, max_tilt);
     EXPECT_EQ(o.differ, 0u) << entry.path().filename();
     ++maps, points += 144, by_default += o.tight;
+    // A looser sweep tolerance (--rtol 1e-9): the same verdicts as the default pass at it.
+    Tolerances looser;
+    looser.rtol = looser.atol = 1e-9;
+    EXPECT_EQ(compare(g, 50.0, max_tilt, looser).differ, 0u) << entry.path().filename() << " at 1e-9";
   }
   EXPECT_GE(maps, 6u);  // plate, equal moments, three gyroscopes, toy top
   // Most points are decided without the default pass (the point of it).

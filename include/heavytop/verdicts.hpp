@@ -9,7 +9,8 @@
 /// "Verdicts at the tolerance that decides them"):
 ///   1. a symmetric top (A == B) whose largest tilt in closed form (lagrange-exact's nutation
 ///      bounds, exact for the motion the integrators approximate) lies more than 1e-6 rad
-///      below max_tilt stays up: no integration at all;
+///      below max_tilt (1e6 times the sweep's tolerance if that is more) stays up: no
+///      integration at all;
 ///   2. every other point is integrated once at a loose tolerance (kLooseTolerance) with a band
 ///      [max_tilt - band, max_tilt + band] around the threshold (batch_tilt_bands). The
 ///      tolerance bounds each step's error (the series' remainder: the last two terms are at

@@ -14,9 +14,11 @@ namespace heavytop {
 namespace {
 
 // rad: a symmetric top whose exact largest tilt is this far below max_tilt stays up in the
-// default pass too (the batch's largest tilt is the closed form's to 1e-11 rad at 1e-12,
-// tests/test_batch.cpp), with room for a looser sweep tolerance.
+// default pass too: the batch's largest tilt is the closed form's to 1e-11 rad at 1e-12 over 30
+// nutation periods (tests/test_batch.cpp); the margin grows with a looser sweep tolerance
+// (1e6 times it: 1e-3 rad at 1e-9), so that the default pass's own error stays far inside.
 constexpr double kClosedFormMargin = 1e-6;
+double closed_form_margin(const Tolerances& o) { return std::max(kClosedFormMargin, 1e6 * std::max(o.rtol, o.atol)); }
 // rad: the loose pass's band is max_tilt -+ this (at most half of max_tilt).
 constexpr double kBand = 0.05;
 // The estimate's safety factor over the sum of the steps' errors.
@@ -41,6 +43,7 @@ void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const Initial
   if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI))
     throw InvalidInput("max_tilt", "must be in (0, pi] rad");
   const bool loose_pass = options.rtol < kLooseTolerance && options.atol < kLooseTolerance;
+  const double margin = closed_form_margin(options);
   Group loose, tight;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
@@ -50,7 +53,7 @@ void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const Initial
       validate(initials[i]);
       LagrangeExactOptions closed;
       closed.fourier_series = false;  // the tilt's bounds only
-      if (nutation_bounds(lagrange_top(b, initials[i], closed)).max_tilt < max_tilt - kClosedFormMargin) {
+      if (nutation_bounds(lagrange_top(b, initials[i], closed)).max_tilt < max_tilt - margin) {
         out[i] = DecidedVerdict{false, 0.0};
         continue;
       }
