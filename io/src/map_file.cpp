@@ -293,7 +293,9 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
       if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > static_cast<unsigned char>(LyapunovCertificate::None))
         break;
       if ((r[3] == 1) != proves_stable(static_cast<LyapunovCertificate>(r[4]))) break;
-      if (nonlinear ? r[5] > 1 : r[5] != 2) break;
+      const int verdict = r[5] & 3, class_ = r[5] >> 2;  // class_: the deciding tolerance (pack_verdicts)
+      if (nonlinear ? verdict > 1 : verdict != 2) break;
+      if (tolerance ? class_ < 1 || class_ > 3 : class_ != 0) break;
     }
     return n;
   }
@@ -349,7 +351,8 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
 #ifndef HEAVYTOP_HAVE_HDF5
 bool hdf5_available() { return false; }
 
-void write_map_hdf5(const std::string&, const std::vector<SweepAxis>&, bool, const VerdictSource&, const std::string& key) {
+void write_map_hdf5(const std::string&, const std::vector<SweepAxis>&, bool, const VerdictSource&, const std::string& key,
+                    bool) {
   throw InvalidInput(key, "this heavytop was built without HDF5 (Debian's libhdf5-dev)");
 }
 
@@ -362,7 +365,8 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
 bool hdf5_available() { return true; }
 
 void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes, bool nonlinear,
-                    const VerdictSource& source, const std::string& key) {
+                    const VerdictSource& source, const std::string& key, bool tolerance) {
+  tolerance = tolerance && nonlinear;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures are reported as exceptions, not printed
   const std::string failed = fmt::format("{}: cannot write '{}' (HDF5)", key, path);
   const Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
@@ -422,12 +426,17 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
       for (hid_t id : ids) H5Dclose(id);
     }
   } close_all{columns};
+  std::string shape;
+  for (const auto& a : axes) shape += fmt::format("{}{}", shape.empty() ? "" : " ", a.count);
   for (const auto& n : names) {
     columns.push_back(dataset(file, n.c_str(), n == "lyapunov_certificate" ? hid_t(certificates) : H5T_STD_U8LE, size));
-    std::string shape;
-    for (const auto& a : axes) shape += fmt::format("{}{}", shape.empty() ? "" : " ", a.count);
     text_attribute(columns.back(), "grid_shape", shape);
   }
+  // sweep --tolerance-column: the rtol that decided each nonlinear verdict.
+  const Handle tolerances(tolerance ? dataset(file, "nonlinear_tolerance", H5T_IEEE_F64LE, size) : H5I_INVALID_HID,
+                          H5Dclose);
+  if (tolerance) text_attribute(tolerances, "grid_shape", shape);
+  std::vector<double> rtols;
   std::vector<std::uint8_t> buffer;
   for (std::size_t begin = 0; begin < points; begin += kRowsPerBlock) {
     const std::size_t end = std::min(points, begin + kRowsPerBlock);
@@ -447,6 +456,13 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
       check(H5Dwrite(columns[c], c == 4 ? hid_t(certificates) : H5T_NATIVE_UINT8, memory, file_space, H5P_DEFAULT,
                      buffer.data()),
             failed);
+    }
+    if (tolerance) {
+      rtols.resize(count);
+      for (std::size_t i = 0; i < count; ++i) rtols[i] = verdicts[i].nonlinear_tolerance.value_or(std::nan(""));
+      const Handle file_space(H5Dget_space(tolerances), H5Sclose);
+      check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &start, nullptr, &count, nullptr), failed);
+      check(H5Dwrite(tolerances, H5T_NATIVE_DOUBLE, memory, file_space, H5P_DEFAULT, rtols.data()), failed);
     }
   }
   check(H5Fflush(file, H5F_SCOPE_LOCAL), failed);

@@ -34,8 +34,8 @@ std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes,
 /// writes them at their grid point (the varied values exactly, each verdict 0 or 1, a
 /// certificate of SPEC section 7 that agrees with the Lyapunov verdict, the nonlinear column
 /// when `nonlinear`), or packed records in range and as consistent (the nonlinear byte 2
-/// exactly when not `nonlinear`; no tolerance bits); CSV rows with `tolerance` also have the
-/// `nonlinear_tolerance` cell, a number. A resumed sweep keeps these and computes the rest: a row off
+/// exactly when not `nonlinear`; tolerance bits exactly with `tolerance` and a verdict); CSV
+/// rows with `tolerance` also have the `nonlinear_tolerance` cell, a number. A resumed sweep keeps these and computes the rest: a row off
 /// the grid, rows beyond it, a crash's zero padding are never copied into the map.
 std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
                                   bool packed, bool tolerance = false);
@@ -56,8 +56,10 @@ using VerdictSource = std::function<std::vector<SweepVerdict>(std::size_t begin,
 /// section 7's names), each of the grid's shape (row-major, the first key slowest), chunked
 /// and compressed. The file records no times, so the same map gives the same bytes. Throws
 /// Failure (naming `key`) if it cannot be written; InvalidInput(key) without HDF5.
+/// With `tolerance` (sweep --tolerance-column) also `/nonlinear_tolerance`, float64: the rtol
+/// that decided each nonlinear verdict (0 for the closed form).
 void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes, bool nonlinear,
-                    const VerdictSource& source, const std::string& key = "--output");
+                    const VerdictSource& source, const std::string& key = "--output", bool tolerance = false);
 
 /// Reads a map written by `heavytop sweep`, CSV or HDF5 (told apart by the file's first
 /// bytes). A CSV's grid is recovered from its rows, which must be a START:STOP:COUNT grid of
