@@ -146,8 +146,8 @@ Action add_sweep_command(CLI::App& app) {
           ->default_str(fmt::format("{}", s->options.integrator.max_steps))
           ->check(positive_count()),
       cmd->add_flag("--tolerance-column", s->tolerance_column,
-                    "nonlinear, CSV: add the column `nonlinear_tolerance`, the rtol that decided each verdict "
-                    "(0: the closed form of a symmetric top)")};
+                    "nonlinear: add the column (HDF5: dataset) `nonlinear_tolerance`, the rtol that decided each "
+                    "verdict (0: the closed form of a symmetric top)")};
   return [inputs, s, nonlinear_only] {
     inputs->resolve();
     if (s->model != "nonlinear")
@@ -161,7 +161,6 @@ Action add_sweep_command(CLI::App& app) {
     const bool hdf5 = inputs->format() == "hdf5";
     if (hdf5 && !io::hdf5_available())
       throw InvalidInput("--format", "hdf5: this heavytop was built without HDF5 (Debian's libhdf5-dev); use csv");
-    if (hdf5 && s->tolerance_column) throw InvalidInput("--tolerance-column", "is a column of the CSV: use --format csv");
     const bool tolerance = s->tolerance_column;
 
     const SweepDistribution& distribution = sweep_distribution();
@@ -245,13 +244,16 @@ Action add_sweep_command(CLI::App& app) {
     if (hdf5) {
       std::ifstream records(partial, std::ios::binary);
       io::write_atomically(path, [&](const std::string& temporary) {
-        io::write_map_hdf5(temporary, axes, s->options.nonlinear, [&](std::size_t begin, std::size_t end) {
-          std::string bytes((end - begin) * io::kPackedVerdictSize, '\0');
-          records.seekg(static_cast<std::streamoff>(journal.head.size() + begin * io::kPackedVerdictSize));
-          if (!records.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
-            throw Failure(fmt::format("--output: cannot read '{}'", partial));
-          return io::unpack_verdicts(bytes);
-        });
+        io::write_map_hdf5(
+            temporary, axes, s->options.nonlinear,
+            [&](std::size_t begin, std::size_t end) {
+              std::string bytes((end - begin) * io::kPackedVerdictSize, '\0');
+              records.seekg(static_cast<std::streamoff>(journal.head.size() + begin * io::kPackedVerdictSize));
+              if (!records.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+                throw Failure(fmt::format("--output: cannot read '{}'", partial));
+              return io::unpack_verdicts(bytes, s->options.integrator.rtol);
+            },
+            "--output", tolerance);
       });
       fs::remove(partial);
     } else {
