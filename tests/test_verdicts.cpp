@@ -285,7 +285,8 @@ TEST(DecidedVerdicts, SweepRecordsTheTolerancePerPoint) {
 
 // `sweep --tolerance-column`: the CSV's nonlinear_tolerance column, read back by the resume's
 // check (valid_journal_records) and past by read_map; MPI's packed records carry the tolerance
-// as a class (0 none, 1 closed form, 2 loose, 3 the sweep's own), a journal none.
+// as a class (0 none, 1 closed form, 2 loose, 3 the sweep's own), and so does an HDF5 sweep's
+// journal with the column (one without has none).
 TEST(DecidedVerdicts, TheToleranceColumnRoundTrips) {
   const std::vector<SweepAxis> axes{parse_sweep_axis("spin=100:300:3")};
   std::vector<SweepVerdict> v(3);
@@ -306,11 +307,13 @@ TEST(DecidedVerdicts, TheToleranceColumnRoundTrips) {
     EXPECT_EQ(back[i].nonlinear, v[i].nonlinear) << i;
     EXPECT_EQ(back[i].nonlinear_tolerance, v[i].nonlinear_tolerance) << i;
   }
-  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true), 0u);  // a journal has no tolerance bits
+  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true), 0u);  // a journal without the column has no tolerance bits
+  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true, true), 3u);  // one with it has them
   for (SweepVerdict& x : v) x.nonlinear_tolerance.reset();
   packed.clear();
   io::pack_verdicts(v, packed);
   EXPECT_EQ(io::valid_journal_records(packed, axes, true, true), 3u);
+  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true, true), 0u);
   const std::filesystem::path file = std::filesystem::temp_directory_path() / "heavytop-test-tolerance-column.csv";
   {
     std::ofstream out(file);
