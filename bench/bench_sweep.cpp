@@ -5,7 +5,9 @@
 //   batched   batch_tilt_extremes() on every point at once, with the widest instruction set
 //             here (way 2), and with 2 (SSE2, way 3) and 4 (AVX2, way 4) lanes
 //   verdicts  batch_tilt_verdicts() (way 5): the same without the tilt's extrema, the call of
-//             `heavytop sweep --integrator auto`
+//             `heavytop sweep --integrator auto` before issue 31
+//   decided   decided_tilt_verdicts() (way 6): each verdict at the tolerance that decides it
+//             (verdicts.hpp), the call of `heavytop sweep --integrator auto` now
 // on two maps:
 //   plate     examples/asymmetric-plate.toml, B/A = 1.05:2.95:400 x spin = 0.5:4:400 rad/s
 //             (every point asymmetric: the plain variables)
@@ -70,7 +72,7 @@ Subset subset(const Map& m) {
   return s;
 }
 
-enum Way { Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2, Verdicts };
+enum Way { Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2, Verdicts, Decided };
 
 void BM_NonlinearMap(benchmark::State& state) {
   const Map m = map(static_cast<int>(state.range(0)));
@@ -84,6 +86,7 @@ void BM_NonlinearMap(benchmark::State& state) {
   }
   std::vector<TiltExtremes> out(s.bodies.size());
   std::vector<TiltVerdict> verdicts(s.bodies.size());
+  std::vector<DecidedVerdict> decided(s.bodies.size());
   std::size_t stable = 0;
   for (auto _ : state) {
     stable = 0;
@@ -96,6 +99,9 @@ void BM_NonlinearMap(benchmark::State& state) {
     } else if (way == Verdicts) {
       batch_tilt_verdicts(s.bodies, s.starts, kHorizon, kMaxTilt, tol, verdicts, isa);
       for (const auto& v : verdicts) stable += !v.exceeded;
+    } else if (way == Decided) {
+      decided_tilt_verdicts(s.bodies, s.starts, kHorizon, kMaxTilt, tol, decided);
+      for (const auto& v : decided) stable += !v.exceeded;
     } else {
       batch_tilt_extremes(s.bodies, s.starts, kHorizon, kMaxTilt, tol, out, isa);
       for (const auto& e : out) stable += !e.exceeded;
@@ -111,7 +117,7 @@ void BM_NonlinearMap(benchmark::State& state) {
 void Args(benchmark::internal::Benchmark* b) {
   b->ArgNames({"map", "way"})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
   for (int map : {0, 1})
-    for (int way : {Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2, Verdicts}) b->Args({map, way});
+    for (int way : {Dopri5, Taylor1, Batched, BatchedSse2, BatchedAvx2, Verdicts, Decided}) b->Args({map, way});
 }
 BENCHMARK(BM_NonlinearMap)->Apply(Args);
 

@@ -7,6 +7,7 @@
 // through a temporary name). Nothing is lost or written twice. Under MPI (heavytop-mpi) the
 // ranks compute the blocks and the first rank alone does all of this.
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,7 @@ struct SweepSettings {
   std::vector<std::string> vary;
   std::string model;
   std::string integrator = "auto";
+  bool tolerance_column = false;  // --tolerance-column: the CSV's nonlinear_tolerance
   SweepOptions options;
 };
 
@@ -59,7 +61,8 @@ struct VerdictCounts {
   }
 };
 
-std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o) {
+std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, const SweepOptions& o,
+                        bool tolerance_column) {
   const Body& b = in.body();
   const InitialState& s = in.state();
   // v4: the damping, the friction and the motor change verdicts too (a v3 partial left them out).
@@ -71,6 +74,7 @@ std::string fingerprint(const Inputs& in, const std::vector<SweepAxis>& axes, co
     f += fmt::format(" nonlinear {} {} {} {} {} {}", o.horizon, o.max_tilt, o.integrator.rtol, o.integrator.atol,
                      name(o.nonlinear_integrator), o.integrator.max_steps);
   if (in.format() != "csv") f += " format " + in.format();
+  if (tolerance_column) f += " tolerance-column";
   return f + "\n";
 }
 
@@ -87,9 +91,10 @@ std::string read_file(const std::string& path) {
 struct Journal {
   std::string head;
   bool packed = false;
+  bool tolerance = false;  // CSV rows with nonlinear_tolerance
 
   std::string encode(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& v) const {
-    if (!packed) return io::sweep_csv_rows(axes, begin, v);
+    if (!packed) return io::sweep_csv_rows(axes, begin, v, tolerance);
     std::string bytes;
     io::pack_verdicts(v, bytes);
     return bytes;
@@ -99,7 +104,7 @@ struct Journal {
   /// rows beyond it, zero padding end them); `content` is cut after the last of them.
   std::size_t whole_records(std::string& content, const std::vector<SweepAxis>& axes, bool nonlinear) const {
     const std::string_view records = std::string_view(content).substr(head.size());
-    const std::size_t n = io::valid_journal_records(records, axes, nonlinear, packed);
+    const std::size_t n = io::valid_journal_records(records, axes, nonlinear, packed, tolerance);
     std::size_t bytes = n * io::kPackedVerdictSize;
     if (!packed) {
       bytes = 0;
@@ -139,7 +144,10 @@ Action add_sweep_command(CLI::App& app) {
       cmd->add_option("--max-steps", s->options.integrator.max_steps,
                       "nonlinear: the most integration steps one point's run may take")
           ->default_str(fmt::format("{}", s->options.integrator.max_steps))
-          ->check(positive_count())};
+          ->check(positive_count()),
+      cmd->add_flag("--tolerance-column", s->tolerance_column,
+                    "nonlinear: add the column (HDF5: dataset) `nonlinear_tolerance`, the rtol that decided each "
+                    "verdict (0: the closed form of a symmetric top)")};
   return [inputs, s, nonlinear_only] {
     inputs->resolve();
     if (s->model != "nonlinear")
@@ -153,6 +161,7 @@ Action add_sweep_command(CLI::App& app) {
     const bool hdf5 = inputs->format() == "hdf5";
     if (hdf5 && !io::hdf5_available())
       throw InvalidInput("--format", "hdf5: this heavytop was built without HDF5 (Debian's libhdf5-dev); use csv");
+    const bool tolerance = s->tolerance_column;
 
     const SweepDistribution& distribution = sweep_distribution();
     s->options.threads = distribution.threads();
@@ -162,7 +171,15 @@ Action add_sweep_command(CLI::App& app) {
     // block was one batch: one core of two busy).
     const std::size_t block = std::clamp<std::size_t>(total / 200, s->options.nonlinear ? 128 : 256, 20000);
     const ComputeBlock compute = [&](std::size_t begin, std::size_t end) {
-      return sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, begin, end);
+      std::vector<SweepVerdict> v = sweep_verdicts(inputs->body(), inputs->state(), axes, s->options, begin, end);
+      if (!tolerance)
+        for (SweepVerdict& x : v) x.nonlinear_tolerance.reset();  // the contract's columns, journals without it
+      return v;
+    };
+    // MPI's ranks send "the sweep's own tolerance" as a class (io::pack_verdicts): its value here.
+    const auto own_tolerance = [&](std::vector<SweepVerdict>& v) {
+      for (SweepVerdict& x : v)
+        if (x.nonlinear_tolerance && std::isnan(*x.nonlinear_tolerance)) x.nonlinear_tolerance = s->options.integrator.rtol;
     };
     if (!distribution.writes()) {  // an MPI rank that only computes
       distribution.run(0, total, block, compute, {});
@@ -170,7 +187,7 @@ Action add_sweep_command(CLI::App& app) {
     }
 
     const std::string path = io::resolved(inputs->output());
-    const std::string head = io::sweep_csv_header(axes, s->options.nonlinear);
+    const std::string head = io::sweep_csv_header(axes, s->options.nonlinear, tolerance);
     ProgressBar progress("sweep", static_cast<double>(total));
     VerdictCounts counts;
     const auto say_what_was_written = [&](const std::string& where, std::size_t resumed) {
@@ -182,7 +199,8 @@ Action add_sweep_command(CLI::App& app) {
       io::OutputStream out(path, "--output");
       out.write(head);
       distribution.run(0, total, block, compute, [&](std::size_t begin, std::vector<SweepVerdict> v) {
-        out.write(io::sweep_csv_rows(axes, begin, v));
+        own_tolerance(v);
+        out.write(io::sweep_csv_rows(axes, begin, v, tolerance));
         counts.add(v);
         progress.update(static_cast<double>(begin + v.size()));
       });
@@ -194,8 +212,9 @@ Action add_sweep_command(CLI::App& app) {
     const io::OutputLock lock(path, "--output");  // one sweep per output at a time: a second is refused
     namespace fs = std::filesystem;
     const std::string partial = path + ".partial", args_file = path + ".partial.args";
-    const std::string args = fingerprint(*inputs, axes, s->options);
-    const Journal journal{.head = hdf5 ? "heavytop-sweep-journal-v1 packed verdicts\n" : head, .packed = hdf5};
+    const std::string args = fingerprint(*inputs, axes, s->options, tolerance);
+    const Journal journal{.head = hdf5 ? "heavytop-sweep-journal-v1 packed verdicts\n" : head, .packed = hdf5,
+                          .tolerance = tolerance};
     std::size_t done = 0;
     if (fs::exists(partial) && fs::exists(args_file) && read_file(args_file) == args) {
       std::string content = read_file(partial);
@@ -213,6 +232,7 @@ Action add_sweep_command(CLI::App& app) {
     std::FILE* out = std::fopen(partial.c_str(), "ab");
     if (!out) throw Failure(fmt::format("--output: cannot write '{}'", partial));
     distribution.run(done, total, block, compute, [&](std::size_t begin, std::vector<SweepVerdict> v) {
+      own_tolerance(v);
       // Whole blocks, flushed: an interrupted sweep leaves complete records (and at most one torn).
       const std::string bytes = journal.encode(axes, begin, v);
       if (std::fwrite(bytes.data(), 1, bytes.size(), out) != bytes.size() || std::fflush(out) != 0)
@@ -224,13 +244,16 @@ Action add_sweep_command(CLI::App& app) {
     if (hdf5) {
       std::ifstream records(partial, std::ios::binary);
       io::write_atomically(path, [&](const std::string& temporary) {
-        io::write_map_hdf5(temporary, axes, s->options.nonlinear, [&](std::size_t begin, std::size_t end) {
-          std::string bytes((end - begin) * io::kPackedVerdictSize, '\0');
-          records.seekg(static_cast<std::streamoff>(journal.head.size() + begin * io::kPackedVerdictSize));
-          if (!records.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
-            throw Failure(fmt::format("--output: cannot read '{}'", partial));
-          return io::unpack_verdicts(bytes);
-        });
+        io::write_map_hdf5(
+            temporary, axes, s->options.nonlinear,
+            [&](std::size_t begin, std::size_t end) {
+              std::string bytes((end - begin) * io::kPackedVerdictSize, '\0');
+              records.seekg(static_cast<std::streamoff>(journal.head.size() + begin * io::kPackedVerdictSize));
+              if (!records.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+                throw Failure(fmt::format("--output: cannot read '{}'", partial));
+              return io::unpack_verdicts(bytes, s->options.integrator.rtol);
+            },
+            "--output", tolerance);
       });
       fs::remove(partial);
     } else {

@@ -73,6 +73,28 @@ struct Rhs {
   }
 };
 
+// The same body in Poisson form (no quaternion): the body-axes images of the fixed frame's
+// zeta and xi axes, gamma = R^T e_zeta and alpha = R^T e_xi, each fixed in space
+// (v' = v x w), and w: x = (gamma, alpha, w). The torque uses gamma / |gamma|^2 (the
+// normalised right-hand side: |gamma| = 1 for the exact flow, and the division keeps the
+// torque's size when rounding drifts |gamma|). The axis k = R e3 = (alpha_3, beta_3, gamma_3)
+// with beta = R^T e_eta = gamma x alpha. Nine variables against the quaternion form's seven,
+// but no quadratic gamma(q): the cheapest right-hand side here.
+template <class T>
+struct PoissonRhs {
+  T A, B, C, mgR;
+  template <class X>
+  void operator()(const X& x, X& d, T /*t*/) const {
+    const T g1 = x[0], g2 = x[1], g3 = x[2], a1 = x[3], a2 = x[4], a3 = x[5], w1 = x[6], w2 = x[7], w3 = x[8];
+    d[0] = g2 * w3 - g3 * w2, d[1] = g3 * w1 - g1 * w3, d[2] = g1 * w2 - g2 * w1;
+    d[3] = a2 * w3 - a3 * w2, d[4] = a3 * w1 - a1 * w3, d[5] = a1 * w2 - a2 * w1;
+    const T k = mgR / (g1 * g1 + g2 * g2 + g3 * g3);
+    d[6] = ((B - C) * w2 * w3 + k * g2) / A;
+    d[7] = ((C - A) * w3 * w1 - k * g1) / B;
+    d[8] = (A - B) * w1 * w2 / C;
+  }
+};
+
 using Axis = Eigen::Vector3d;
 using Axes = std::vector<Axis>;
 
@@ -81,6 +103,13 @@ Axis axis_of_state(const std::array<T, 7>& x) {  // k = R(q) e3
   const double qw = double(x[0]), qx = double(x[1]), qy = double(x[2]), qz = double(x[3]);
   const double n2 = qw * qw + qx * qx + qy * qy + qz * qz;
   return Axis(2 * (qx * qz + qw * qy), 2 * (qy * qz - qw * qx), qw * qw - qx * qx - qy * qy + qz * qz) / n2;
+}
+
+template <class T>
+Axis axis_of_poisson(const std::array<T, 9>& x) {  // k = (alpha_3, (gamma x alpha)_3, gamma_3)
+  const double g1 = double(x[0]), g2 = double(x[1]), g3 = double(x[2]);
+  const double a1 = double(x[3]), a2 = double(x[4]), a3 = double(x[5]);
+  return Axis(a3, g1 * a2 - g2 * a1, g3);
 }
 
 Axis axis_of_angles(double theta, double phi) {  // SPEC section 2
@@ -107,6 +136,21 @@ std::array<T, 7> initial(const Problem& p) {
   return x;
 }
 
+// The Poisson state of the same start: gamma and alpha the third and first rows of R(q).
+template <class T>
+std::array<T, 9> initial_poisson(const Problem& p) {
+  const std::array<double, 7> q = initial<double>(p);
+  const double qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+  const double n2 = qw * qw + qx * qx + qy * qy + qz * qz;
+  const std::array<double, 9> x = {2 * (qx * qz - qw * qy) / n2, 2 * (qy * qz + qw * qx) / n2,
+                                   (qw * qw - qx * qx - qy * qy + qz * qz) / n2,
+                                   (qw * qw + qx * qx - qy * qy - qz * qz) / n2, 2 * (qx * qy - qw * qz) / n2,
+                                   2 * (qx * qz + qw * qy) / n2, q[4], q[5], q[6]};
+  std::array<T, 9> out;
+  for (int i = 0; i < 9; ++i) out[i] = T(x[i]);
+  return out;
+}
+
 std::vector<double> times_of(const Problem& p) { return heavytop::sample_times(p.horizon, 101); }
 
 // ---- The methods: each maps a tolerance to the axes at the 101 samples ----
@@ -128,22 +172,23 @@ Axes heavytop_run(const Problem& p, double tol, heavytop::Integrator integrator)
   return axes_of(s.trajectory);
 }
 
+template <class R, std::size_t N>
 int gsl_rhs(double, const double y[], double f[], void* params) {
-  const auto& rhs = *static_cast<const Rhs<double>*>(params);
-  std::array<double, 7> x, d;
-  std::copy(y, y + 7, x.begin());
+  const auto& rhs = *static_cast<const R*>(params);
+  std::array<double, N> x, d;
+  std::copy(y, y + N, x.begin());
   rhs(x, d, 0.0);
   std::copy(d.begin(), d.end(), f);
   return GSL_SUCCESS;
 }
 
-Axes gsl_rk8pd(const Problem& p, double tol) {
-  Rhs<double> rhs{p.body.A, p.body.B, p.body.C, p.body.mgR()};
-  gsl_odeiv2_system sys{gsl_rhs, nullptr, 7, &rhs};
-  gsl_odeiv2_step* step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 7);
+// GSL's rk8pd stepping to each sample time on the right-hand side `rhs` from x (N variables).
+template <class R, std::size_t N, class AxisOf>
+Axes gsl_run(const Problem& p, double tol, R rhs, std::array<double, N> x, AxisOf axis_of) {
+  gsl_odeiv2_system sys{gsl_rhs<R, N>, nullptr, N, &rhs};
+  gsl_odeiv2_step* step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, N);
   gsl_odeiv2_control* control = gsl_odeiv2_control_y_new(tol, tol);
-  gsl_odeiv2_evolve* evolve = gsl_odeiv2_evolve_alloc(7);
-  std::array<double, 7> x = initial<double>(p);
+  gsl_odeiv2_evolve* evolve = gsl_odeiv2_evolve_alloc(N);
   double t = 0.0, h = 1e-3;
   Axes out;
   std::size_t steps = 0;
@@ -157,7 +202,7 @@ Axes gsl_rk8pd(const Problem& p, double tol) {
       }
     }
     if (ti == 1e300) break;
-    out.push_back(axis_of_state(x));
+    out.push_back(axis_of(x));
   }
   gsl_odeiv2_evolve_free(evolve);
   gsl_odeiv2_control_free(control);
@@ -165,23 +210,43 @@ Axes gsl_rk8pd(const Problem& p, double tol) {
   return out;
 }
 
-template <class Stepper>
-Axes odeint_run(const Problem& p, Stepper stepper) {
-  Rhs<double> rhs{p.body.A, p.body.B, p.body.C, p.body.mgR()};
-  std::array<double, 7> x = initial<double>(p);
+Rhs<double> quaternion_rhs(const Problem& p) { return {p.body.A, p.body.B, p.body.C, p.body.mgR()}; }
+PoissonRhs<double> poisson_rhs(const Problem& p) { return {p.body.A, p.body.B, p.body.C, p.body.mgR()}; }
+
+Axes gsl_rk8pd(const Problem& p, double tol) {
+  return gsl_run(p, tol, quaternion_rhs(p), initial<double>(p), axis_of_state<double>);
+}
+Axes gsl_rk8pd_poisson(const Problem& p, double tol) {
+  return gsl_run(p, tol, poisson_rhs(p), initial_poisson<double>(p), axis_of_poisson<double>);
+}
+
+template <class R, class State, class Stepper, class AxisOf>
+Axes odeint_run(const Problem& p, Stepper stepper, R rhs, State x, AxisOf axis_of) {
   const std::vector<double> times = times_of(p);
   Axes out;
   odeint::integrate_times(stepper, rhs, x, times.begin(), times.end(), 1e-3,
-                          [&](const std::array<double, 7>& y, double) { out.push_back(axis_of_state(y)); });
+                          [&](const State& y, double) { out.push_back(axis_of(y)); });
   return out;
 }
 
-Axes odeint_rkf78(const Problem& p, double tol) {
-  return odeint_run(p, odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<std::array<double, 7>>()));
-}
+using Q7 = std::array<double, 7>;
+using P9 = std::array<double, 9>;
 
+Axes odeint_rkf78(const Problem& p, double tol) {
+  return odeint_run(p, odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<Q7>()), quaternion_rhs(p),
+                    initial<double>(p), axis_of_state<double>);
+}
 Axes odeint_bulirsch_stoer(const Problem& p, double tol) {
-  return odeint_run(p, odeint::bulirsch_stoer<std::array<double, 7>>(tol, tol));
+  return odeint_run(p, odeint::bulirsch_stoer<Q7>(tol, tol), quaternion_rhs(p), initial<double>(p),
+                    axis_of_state<double>);
+}
+Axes odeint_rkf78_poisson(const Problem& p, double tol) {
+  return odeint_run(p, odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<P9>()), poisson_rhs(p),
+                    initial_poisson<double>(p), axis_of_poisson<double>);
+}
+Axes odeint_bulirsch_stoer_poisson(const Problem& p, double tol) {
+  return odeint_run(p, odeint::bulirsch_stoer<P9>(tol, tol), poisson_rhs(p), initial_poisson<double>(p),
+                    axis_of_poisson<double>);
 }
 
 #ifdef HEAVYTOP_PEERS_MUJOCO
@@ -295,8 +360,11 @@ int main(int argc, char** argv) {
       {"heavytop dop853", [](const Problem& p, double t) { return heavytop_run(p, t, Integrator::Dop853); }},
       {"heavytop dopri5", [](const Problem& p, double t) { return heavytop_run(p, t, Integrator::Adaptive); }},
       {"GSL rk8pd", gsl_rk8pd},
+      {"GSL rk8pd (Poisson)", gsl_rk8pd_poisson},
       {"odeint rkf78", odeint_rkf78},
+      {"odeint rkf78 (Poisson)", odeint_rkf78_poisson},
       {"odeint bulirsch_stoer", odeint_bulirsch_stoer},
+      {"odeint bulirsch_stoer (Poisson)", odeint_bulirsch_stoer_poisson},
 #ifdef HEAVYTOP_PEERS_MUJOCO
       {"MuJoCo 2.2.2 RK4 (ball joint)", mujoco_rk4, mujoco_step},
 #endif
@@ -316,6 +384,14 @@ int main(int argc, char** argv) {
       const double check = max_angle(ref, heavytop_run(p, 1e-15, Integrator::Taylor));
       std::fprintf(stderr, "%s: long-double reference against heavytop taylor at 1e-15: %.2e rad\n", p.name.c_str(), check);
     }
+    // Each method's error at every tolerance of the grid, measured (once for all levels): a
+    // level's tolerance and error below are a measured pair, never interpolated.
+    std::vector<std::vector<double>> grid_errors(methods.size());
+    for (std::size_t m = 0; m < methods.size(); ++m)
+      for (int k = 8; k <= 60; ++k) {
+        const Axes a = methods[m].run(p, std::pow(10.0, -k / 4.0));
+        grid_errors[m].push_back(a.size() == ref.size() ? max_angle(a, ref) : 1e300);
+      }
     for (double level : levels) {
       // Calibrate: the loosest tolerance on the grid that reaches the level and stays there
       // for the next two decades tighter (an error that dips below the level at one lucky
@@ -323,11 +399,7 @@ int main(int argc, char** argv) {
       std::vector<double> tol(methods.size(), 0.0), err(methods.size(), 0.0);
       std::vector<bool> lucky(methods.size(), false);
       for (std::size_t m = 0; m < methods.size(); ++m) {
-        std::vector<double> errors;
-        for (int k = 8; k <= 60; ++k) {
-          const Axes a = methods[m].run(p, std::pow(10.0, -k / 4.0));
-          errors.push_back(a.size() == ref.size() ? max_angle(a, ref) : 1e300);
-        }
+        const std::vector<double>& errors = grid_errors[m];
         for (std::size_t i = 0; i < errors.size(); ++i) {
           bool stays = true;
           for (std::size_t j = i; j < std::min(errors.size(), i + 9); ++j) stays = stays && errors[j] <= level;

@@ -86,4 +86,23 @@ void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialSt
                          double horizon, double stop_above, const Tolerances& options,
                          std::span<TiltVerdict> out, BatchIsa isa);
 
+/// A verdict with a band around its threshold (the sweep's loose first pass, verdicts.hpp).
+struct TiltBand {
+  bool exceeded = false;     ///< the tilt passed `high` (batch_tilt_verdicts' verdict at stop_above = high)
+  double t_end = 0.0;        ///< s, that crossing, or the horizon (the same bits as there)
+  bool touched_low = false;  ///< the tilt passed `low` at one of the points the crossing test looks at
+  double peak_tilt = 0.0;    ///< rad, the largest tilt at those points (`high` once exceeded)
+  std::size_t steps = 0;     ///< Taylor steps taken (dimensionless)
+};
+
+/// batch_tilt_verdicts() at stop_above = `high`, also watching a lower tilt `low` (rad, 0 <
+/// low < high) and the largest tilt at the points where the crossing is tested (the 9 piece
+/// ends of each step, as taylor.cpp splits it); same units, keys and failures, and the
+/// verdicts are the same bits.
+void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out);
+void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out,
+                      BatchIsa isa);
+
 }  // namespace heavytop

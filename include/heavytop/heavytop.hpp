@@ -23,6 +23,7 @@
 #include "heavytop/splitting.hpp"       // the structure-preserving splitting integrator
 #include "heavytop/taylor.hpp"          // the Taylor-series integrator of the full body
 #include "heavytop/batch.hpp"           // the Taylor integrator on many bodies at once (sweeps)
+#include "heavytop/verdicts.hpp"        // a sweep's verdicts, each at the tolerance that decides it
 #include "heavytop/general_body.hpp"    // the general body (SPEC section 11) in nonlinear
 #include "heavytop/dop853.hpp"          // the 8th-order Runge-Kutta of the full body
 #include "heavytop/lagrange_exact.hpp"  // the symmetric top's motion in closed form

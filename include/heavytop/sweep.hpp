@@ -86,6 +86,9 @@ struct SweepVerdict {
   /// The certificate behind that verdict (SPEC section 7's names; `none` when undecided).
   LyapunovCertificate lyapunov_certificate = LyapunovCertificate::None;
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
+  /// The rtol (dimensionless) of the run that decided `nonlinear` (verdicts.hpp's
+  /// DecidedVerdict::tolerance: 0 for the closed form); set with it.
+  std::optional<double> nonlinear_tolerance;
 };
 
 /// One axis of a stability map: the key and its values (in the key's SI unit), as a sweep

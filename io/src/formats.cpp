@@ -457,16 +457,18 @@ std::string comparison_text(const Comparison& c, double t_end) {
   return out.str();
 }
 
-std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear) {
+std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear, bool tolerance) {
   std::string h;
   for (const auto& a : axes) h += a.key + ",";
   for (std::size_t m = 0; m < kLinearModels.size(); ++m) h += fmt::format("{}{}", m ? "," : "", name(kLinearModels[m]));
   h += ",lyapunov,lyapunov_certificate";
   if (nonlinear) h += ",nonlinear";
+  if (nonlinear && tolerance) h += ",nonlinear_tolerance";
   return h + "\n";
 }
 
-std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& verdicts) {
+std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin, const std::vector<SweepVerdict>& verdicts,
+                           bool tolerance) {
   fmt::memory_buffer out;
   for (std::size_t r = 0; r < verdicts.size(); ++r) {
     for (double value : grid_values(axes, begin + r)) fmt::format_to(fmt::appender(out), "{},", value);
@@ -474,6 +476,7 @@ std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin
     fmt::format_to(fmt::appender(out), "{},{},{},{},{}", int(v.linear[0]), int(v.linear[1]), int(v.linear[2]),
                    int(v.lyapunov), name(v.lyapunov_certificate));
     if (v.nonlinear) fmt::format_to(fmt::appender(out), ",{}", int(*v.nonlinear));
+    if (v.nonlinear && tolerance) fmt::format_to(fmt::appender(out), ",{}", v.nonlinear_tolerance.value_or(std::nan("")));
     out.push_back('\n');
   }
   return fmt::to_string(out);

@@ -15,6 +15,7 @@
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/linear_models.hpp"
+#include "heavytop/verdicts.hpp"
 
 #ifdef HEAVYTOP_HAVE_HDF5
 #include <hdf5.h>
@@ -126,10 +127,14 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
   }
   const auto first_verdict = std::find(header.begin(), header.end(), "first-order");
   const std::vector<std::string> keys(header.begin(), first_verdict);
-  const bool nonlinear = !header.empty() && header.back() == "nonlinear";
+  // `sweep --tolerance-column` adds nonlinear_tolerance after nonlinear (read past: a map
+  // holds verdicts).
+  const bool tolerance = header.size() > 1 && header.back() == "nonlinear_tolerance";
+  const bool nonlinear = header.size() > std::size_t(tolerance) && header[header.size() - 1 - tolerance] == "nonlinear";
   std::vector<SweepAxis> named;
   for (const auto& k : keys) named.push_back(SweepAxis{.key = k, .start = 0, .stop = 0, .count = 1});
-  if (keys.empty() || keys.size() > kMaxSweepAxes || text.substr(0, eol + 1) != sweep_csv_header(named, nonlinear))
+  if (keys.empty() || keys.size() > kMaxSweepAxes ||
+      text.substr(0, eol + 1) != sweep_csv_header(named, nonlinear, tolerance))
     throw InvalidInput(key, "not a sweep's CSV: the header must be 1 to 3 varied keys, then " +
                                 std::string(sweep_csv_header({}, nonlinear).substr(0, sweep_csv_header({}, nonlinear).size() - 1)));
   std::vector<std::vector<double>> values;
@@ -237,23 +242,33 @@ std::string oversized_heap(const std::string& path, std::uintmax_t file_size) {
 void pack_verdicts(const std::vector<SweepVerdict>& verdicts, std::string& out) {
   out.reserve(out.size() + verdicts.size() * kPackedVerdictSize);
   for (const auto& v : verdicts) {
+    // The tolerance that decided the nonlinear verdict, as a class (map_file.hpp).
+    const int tolerance = !v.nonlinear || !v.nonlinear_tolerance     ? 0
+                          : *v.nonlinear_tolerance == 0.0             ? 1
+                          : *v.nonlinear_tolerance == kLooseTolerance ? 2
+                                                                      : 3;
     const char record[kPackedVerdictSize] = {char(v.linear[0]), char(v.linear[1]), char(v.linear[2]), char(v.lyapunov),
-                                             char(v.lyapunov_certificate), char(v.nonlinear ? int(*v.nonlinear) : 2)};
+                                             char(v.lyapunov_certificate),
+                                             char((v.nonlinear ? int(*v.nonlinear) : 2) | tolerance << 2)};
     out.append(record, kPackedVerdictSize);
   }
 }
 
-std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes) {
+std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes, double sweep_rtol) {
   if (bytes.size() % kPackedVerdictSize != 0) throw Failure("packed verdicts: a record is torn");
   std::vector<SweepVerdict> out(bytes.size() / kPackedVerdictSize);
   constexpr auto kLast = static_cast<unsigned char>(kLastLyapunovCertificate);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const auto* r = reinterpret_cast<const unsigned char*>(bytes.data() + i * kPackedVerdictSize);
-    if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || r[5] > 2)
+    const int nonlinear = r[5] & 3, tolerance = r[5] >> 2;
+    if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > kLast || nonlinear > 2 || tolerance > 3 ||
+        (nonlinear == 2 && tolerance != 0))
       throw Failure("packed verdicts: a byte is out of range");
     out[i] = SweepVerdict{.linear = {r[0] == 1, r[1] == 1, r[2] == 1}, .lyapunov = r[3] == 1,
                           .lyapunov_certificate = static_cast<LyapunovCertificate>(r[4]),
-                          .nonlinear = r[5] == 2 ? std::nullopt : std::optional<bool>(r[5] == 1)};
+                          .nonlinear = nonlinear == 2 ? std::nullopt : std::optional<bool>(nonlinear == 1)};
+    if (tolerance)
+      out[i].nonlinear_tolerance = tolerance == 1 ? 0.0 : tolerance == 2 ? kLooseTolerance : sweep_rtol;
   }
   return out;
 }
@@ -268,7 +283,8 @@ bool proves_stable(LyapunovCertificate c) {
 }  // namespace
 
 std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
-                                  bool packed) {
+                                  bool packed, bool tolerance) {
+  tolerance = tolerance && nonlinear;
   const std::size_t total = grid_size(axes);
   std::size_t n = 0;
   if (packed) {
@@ -277,11 +293,13 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
       if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > static_cast<unsigned char>(LyapunovCertificate::None))
         break;
       if ((r[3] == 1) != proves_stable(static_cast<LyapunovCertificate>(r[4]))) break;
-      if (nonlinear ? r[5] > 1 : r[5] != 2) break;
+      const int verdict = r[5] & 3, class_ = r[5] >> 2;  // class_: the deciding tolerance (pack_verdicts)
+      if (nonlinear ? verdict > 1 : verdict != 2) break;
+      if (tolerance ? class_ < 1 || class_ > 3 : class_ != 0) break;
     }
     return n;
   }
-  const std::size_t cells = axes.size() + 5 + (nonlinear ? 1 : 0);
+  const std::size_t cells = axes.size() + 5 + (nonlinear ? 1 : 0) + (tolerance ? 1 : 0);
   std::vector<std::string_view> cell;
   for (std::size_t at = 0; n < total && at < records.size(); ++n) {
     const std::size_t end = records.find('\n', at);
@@ -318,7 +336,14 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
       if (f < 0) break;
       v.nonlinear = f == 1;
     }
-    if (sweep_csv_rows(axes, n, {v}) != line) break;  // the varied values at their grid point, exactly
+    if (tolerance) {
+      const std::string_view t = cell[c + 6];
+      double value = 0.0;
+      const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+      if (ec != std::errc() || p != t.data() + t.size()) break;
+      v.nonlinear_tolerance = value;
+    }
+    if (sweep_csv_rows(axes, n, {v}, tolerance) != line) break;  // the varied values at their grid point, exactly
   }
   return n;
 }
@@ -326,7 +351,8 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
 #ifndef HEAVYTOP_HAVE_HDF5
 bool hdf5_available() { return false; }
 
-void write_map_hdf5(const std::string&, const std::vector<SweepAxis>&, bool, const VerdictSource&, const std::string& key) {
+void write_map_hdf5(const std::string&, const std::vector<SweepAxis>&, bool, const VerdictSource&, const std::string& key,
+                    bool) {
   throw InvalidInput(key, "this heavytop was built without HDF5 (Debian's libhdf5-dev)");
 }
 
@@ -339,7 +365,8 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
 bool hdf5_available() { return true; }
 
 void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes, bool nonlinear,
-                    const VerdictSource& source, const std::string& key) {
+                    const VerdictSource& source, const std::string& key, bool tolerance) {
+  tolerance = tolerance && nonlinear;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures are reported as exceptions, not printed
   const std::string failed = fmt::format("{}: cannot write '{}' (HDF5)", key, path);
   const Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
@@ -399,12 +426,17 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
       for (hid_t id : ids) H5Dclose(id);
     }
   } close_all{columns};
+  std::string shape;
+  for (const auto& a : axes) shape += fmt::format("{}{}", shape.empty() ? "" : " ", a.count);
   for (const auto& n : names) {
     columns.push_back(dataset(file, n.c_str(), n == "lyapunov_certificate" ? hid_t(certificates) : H5T_STD_U8LE, size));
-    std::string shape;
-    for (const auto& a : axes) shape += fmt::format("{}{}", shape.empty() ? "" : " ", a.count);
     text_attribute(columns.back(), "grid_shape", shape);
   }
+  // sweep --tolerance-column: the rtol that decided each nonlinear verdict.
+  const Handle tolerances(tolerance ? dataset(file, "nonlinear_tolerance", H5T_IEEE_F64LE, size) : H5I_INVALID_HID,
+                          H5Dclose);
+  if (tolerance) text_attribute(tolerances, "grid_shape", shape);
+  std::vector<double> rtols;
   std::vector<std::uint8_t> buffer;
   for (std::size_t begin = 0; begin < points; begin += kRowsPerBlock) {
     const std::size_t end = std::min(points, begin + kRowsPerBlock);
@@ -424,6 +456,13 @@ void write_map_hdf5(const std::string& path, const std::vector<SweepAxis>& axes,
       check(H5Dwrite(columns[c], c == 4 ? hid_t(certificates) : H5T_NATIVE_UINT8, memory, file_space, H5P_DEFAULT,
                      buffer.data()),
             failed);
+    }
+    if (tolerance) {
+      rtols.resize(count);
+      for (std::size_t i = 0; i < count; ++i) rtols[i] = verdicts[i].nonlinear_tolerance.value_or(std::nan(""));
+      const Handle file_space(H5Dget_space(tolerances), H5Sclose);
+      check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &start, nullptr, &count, nullptr), failed);
+      check(H5Dwrite(tolerances, H5T_NATIVE_DOUBLE, memory, file_space, H5P_DEFAULT, rtols.data()), failed);
     }
   }
   check(H5Fflush(file, H5F_SCOPE_LOCAL), failed);

@@ -5,6 +5,7 @@
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/taylor.hpp"
+#include "heavytop/verdicts.hpp"
 
 #include "heavytop/frames.hpp"
 
@@ -60,17 +61,22 @@ bool sweep_tilt_verdict(const Body& body, const InitialState& state, const Sweep
   return !tilt_extremes(o.nonlinear_integrator, body, state, o.horizon, o.max_tilt, o.integrator).exceeded;
 }
 
+// Each verdict at the tolerance that decides it (verdicts.hpp): the same verdicts as the
+// batch at the sweep's tolerance, most of them from a closed form or a loose pass.
 struct SweepBatch {
   std::vector<Body> bodies;
   std::vector<InitialState> states;
   std::vector<std::size_t> slots;  // their places in the block's output
-  std::vector<TiltVerdict> results;
+  std::vector<DecidedVerdict> results;
 
   void clear() { bodies.clear(), states.clear(), slots.clear(); }
   void judge(const SweepOptions& o, std::vector<SweepVerdict>& out) {
     results.resize(bodies.size());
-    batch_tilt_verdicts(bodies, states, o.horizon, o.max_tilt, o.integrator, results);
-    for (std::size_t k = 0; k < slots.size(); ++k) out[slots[k]].nonlinear = !results[k].exceeded;
+    decided_tilt_verdicts(bodies, states, o.horizon, o.max_tilt, o.integrator, results);
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+      out[slots[k]].nonlinear = !results[k].exceeded;
+      out[slots[k]].nonlinear_tolerance = results[k].tolerance;
+    }
   }
 };
 
@@ -288,6 +294,7 @@ std::vector<SweepVerdict> sweep_verdicts(const Body& base, const InitialState& b
             batch.bodies.push_back(body), batch.states.push_back(state), batch.slots.push_back(i);
           } else if (options.nonlinear) {
             v.nonlinear = sweep_tilt_verdict(body, state, options);
+            v.nonlinear_tolerance = options.integrator.rtol;
           }
         } catch (...) {
           std::call_once(failed, [&] { failure = std::current_exception(); });

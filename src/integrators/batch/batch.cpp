@@ -93,7 +93,7 @@ namespace {
 // variables, the kernel of `isa`; results into `results` (grid order).
 void scan(std::span<const Body> bodies, std::span<const InitialState> initials, std::size_t outputs, double horizon,
           double stop_above, const Tolerances& options, BatchIsa isa, bool extremes,
-          std::vector<detail::BatchResult>& results) {
+          std::vector<detail::BatchResult>& results, double band_low = 0.0) {
   if (bodies.size() != initials.size() || bodies.size() != outputs)
     throw InvalidInput("bodies", "bodies, initial states and results must be as many");
   if (!batch_isa_supported(isa))
@@ -124,7 +124,7 @@ void scan(std::span<const Body> bodies, std::span<const InitialState> initials, 
     (b.A == b.B ? symmetric : plain).push_back(point);
   }
   detail::BatchSettings settings{taylor_order(options, TaylorVariables::Plain), options.rtol, options.atol,
-                                 horizon, stop_above, options.max_steps, extremes};
+                                 horizon, stop_above, options.max_steps, extremes, band_low};
   auto kernel = isa == BatchIsa::Avx512 ? detail::batch_scan_avx512
                 : isa == BatchIsa::Avx2 ? detail::batch_scan_avx2
                                         : detail::batch_scan_sse2;
@@ -165,6 +165,23 @@ void batch_tilt_verdicts(std::span<const Body> bodies, std::span<const InitialSt
   std::vector<detail::BatchResult> results;
   scan(bodies, initials, out.size(), horizon, stop_above, options, isa, false, results);
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = TiltVerdict{results[i].exceeded, results[i].t_end};
+}
+
+void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out) {
+  batch_tilt_bands(bodies, initials, horizon, low, high, options, out, best_batch_isa());
+}
+
+void batch_tilt_bands(std::span<const Body> bodies, std::span<const InitialState> initials, double horizon,
+                      double low, double high, const Tolerances& options, std::span<TiltBand> out,
+                      BatchIsa isa) {
+  if (!(low > 0.0 && low < high)) throw InvalidInput("max_tilt", "the band's low tilt must be in (0, high)");
+  std::vector<detail::BatchResult> results;
+  scan(bodies, initials, out.size(), horizon, high, options, isa, false, results, low);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const detail::BatchResult& r = results[i];
+    out[i] = TiltBand{r.exceeded, r.t_end, r.touched_low, std::acos(std::clamp(r.peak_cos, -1.0, 1.0)), r.steps};
+  }
 }
 
 }  // namespace heavytop

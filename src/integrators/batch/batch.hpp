@@ -19,6 +19,12 @@ inline constexpr int kBatchMaxOrder = 24;
 struct BatchResult {
   double min_tilt, t_min, max_tilt, t_max, t_end;  // rad, s, rad, s, s
   bool exceeded;
+  // With BatchSettings::band_low (verdicts only): the tilt passed band_low at one of the
+  // steps' piece points (or its crossing of stop_above); the largest tilt at those points (rad,
+  // as cos: peak_cos = min k_zeta); the steps taken.
+  bool touched_low = false;
+  double peak_cos = 1.0;
+  std::size_t steps = 0;
 };
 
 // One body of a batch, prepared in batch.cpp.
@@ -39,6 +45,9 @@ struct BatchSettings {
   double stop_above;           // rad
   std::size_t max_steps;
   bool extremes;               // false: only `exceeded` and `t_end` are wanted (batch_tilt_verdicts)
+  // Verdicts only: > 0 also watches this lower tilt (rad, < stop_above) and the peak (the
+  // band fields of BatchResult; batch_tilt_bands). 0: off.
+  double band_low = 0.0;
 };
 
 // A root of the polynomial s[0..p] on [a, b] (s(a), s(b) of opposite signs): taylor.cpp's

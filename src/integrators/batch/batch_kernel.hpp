@@ -37,6 +37,36 @@ inline V vmax(V a, V b) {
   return r;
 }
 
+// x^n for 1 <= n <= kBatchMaxOrder (repeated squaring; used only to compare, see step_size).
+inline double integer_power(double x, int n) {
+  double r = 1.0;
+  for (; n > 0; n >>= 1, x *= x)
+    if (n & 1) r *= x;
+  return r;
+}
+
+// min(pow(x, -1/(p-1)), pow(y, -1/p)) (taylor/integrator.hpp's step: std::min(a, b) = (b < a) ? b : a)
+// with one pow instead of two wherever the order of the two is clear: a < b exactly when
+// x^p > y^(p-1), compared from frexp's mantissas and exponents (no overflow). The margin
+// 1e-10 on that ratio is a relative gap of >= 1e-10 / (p (p - 1)) >= 1.8e-13 between a and b,
+// far beyond pow's error (< 1 ulp): where it is met the pow computed is the smaller of the
+// two pows, so the result is the two-pow result bit for bit; elsewhere (near ties, zeros,
+// infinities, NaN) both are computed as before.
+inline double step_size(double x, double y, int p, double inv_pm1, double inv_p) {
+  if (x > 0.0 && y > 0.0 && x < __builtin_inf() && y < __builtin_inf()) {
+    int ex = 0, ey = 0;
+    const double mx = __builtin_frexp(x, &ex), my = __builtin_frexp(y, &ey);
+    const long d = static_cast<long>(p) * ex - static_cast<long>(p - 1) * ey;
+    // x^p / y^(p-1) = r 2^d, r in [2^-24, 2^23]
+    const double r = integer_power(mx, p) / integer_power(my, p - 1);
+    const double ratio = d > 60 ? 2.0 : d < -60 ? 0.0 : __builtin_ldexp(r, static_cast<int>(d));
+    if (ratio > 1.0 + 1e-10) return __builtin_pow(x, inv_pm1);
+    if (ratio < 1.0 - 1e-10) return __builtin_pow(y, inv_p);
+  }
+  const double a = __builtin_pow(x, inv_pm1), b = __builtin_pow(y, inv_p);
+  return (b < a) ? b : a;
+}
+
 // Everything of one batch: the jet of the W bodies, the events' series, the parameters.
 struct Work {
   V c[kM + 1][7];          // c[n][i]: coefficient n of variable i (q w, x, y, z; w or v 1, 2, 3)
@@ -46,9 +76,18 @@ struct Work {
   V e1, e2, e3, ka, kb, c_over_a;
 };
 
+// 0.5 / (n + 1) and 1 / (n + 1), n = 0..kM - 1: the recurrence's divisions, each once (the
+// same values, so the same bits).
+struct Reciprocals {
+  double half[kM], inv[kM];
+  Reciprocals() {
+    for (int n = 0; n < kM; ++n) half[n] = 0.5 / (n + 1), inv[n] = 1.0 / (n + 1);
+  }
+};
+
 // taylor/recurrence.hpp's Plain::coefficients / SpinFactored::coefficients, on W lanes.
 template <bool Symmetric>
-inline void coefficients(Work& w, int p) {
+inline void coefficients(Work& w, int p, const Reciprocals& r) {
   if constexpr (Symmetric) {
     const V nutation = w.c_over_a * w.c[0][6];  // rad/s, C w3 / A
     for (int n = 0; n < p; ++n) {
@@ -62,7 +101,7 @@ inline void coefficients(Work& w, int p) {
       }
       w.g1[n] = 2.0 * (xz - wy);
       w.g2[n] = 2.0 * (yz + wx);
-      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double half = r.half[n], inv = r.inv[n];
       const V* row = w.c[n];
       V* next = w.c[n + 1];
       next[0] = -half * (px1 + py2);
@@ -89,7 +128,7 @@ inline void coefficients(Work& w, int p) {
       }
       w.g1[n] = 2.0 * (xz - wy);
       w.g2[n] = 2.0 * (yz + wx);
-      const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
+      const double half = r.half[n], inv = r.inv[n];
       V* next = w.c[n + 1];
       next[0] = -half * (qx1 + qy2 + qz3);
       next[1] = half * (qw1 + qy3 - qz2);
@@ -116,6 +155,17 @@ inline V horner(const V* s, int stride, int p, V tau) {
   return v;
 }
 
+// One series (stride V apart) at the pieces' points at[0..kPieces], their Horner chains
+// interleaved (each chain's operations as horner()'s, so the same bits; one chain alone waits
+// on each multiply-add in turn).
+inline void horner_pieces(const V* s, int stride, int p, const V* at, V* out) {
+  V v[kPieces + 1];
+  for (int k = 0; k <= kPieces; ++k) v[k] = s[p * stride];
+  for (int n = p - 1; n >= 0; --n)
+    for (int k = 0; k <= kPieces; ++k) v[k] = v[k] * at[k] + s[n * stride];
+  for (int k = 0; k <= kPieces; ++k) out[k] = v[k];
+}
+
 // taylor.cpp's tilt_of: atan2(|k_horizontal|, k_zeta) of a (not normalised) quaternion.
 inline double tilt_of(double qw, double qx, double qy, double qz) {
   const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
@@ -131,6 +181,10 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
   const bool threshold = stop_above < 3.141592653589793;  // a tilt above pi cannot be reached
   const double cos_stop = __builtin_cos(stop_above);
   const double inv_pm1 = -1.0 / (p - 1), inv_p = -1.0 / p;
+  const Reciprocals reciprocals;
+  // The band (batch_tilt_bands): k_zeta - cos(stop_above) below this means a tilt above band_low.
+  const bool banded = !Extremes && s.band_low > 0.0;
+  const double low_kz = banded ? __builtin_cos(s.band_low) - cos_stop : 0.0;
 
   Work w;
   std::size_t point[W];   // the point each lane integrates
@@ -148,6 +202,8 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
       const BatchPoint& b = points[next_point++];
       BatchResult& r = e[l];
       r = BatchResult{0.0, 0.0, 0.0, 0.0, 0.0, false};
+      r.peak_cos = __builtin_cos(b.tilt0);
+      r.touched_low = banded && b.tilt0 > s.band_low;
       r.min_tilt = r.max_tilt = b.tilt0;
       r.exceeded = b.tilt0 > stop_above;
       if (r.exceeded || horizon == 0.0) {
@@ -168,6 +224,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
     t[l] = t_old[l] = 0.0;
   };
   auto finish = [&](int l) {
+    e[l].steps = steps[l];
     out[point[l]] = e[l];
     fill(l);
   };
@@ -210,7 +267,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
       for (int i = 0; i < 4; ++i) w.x[i] /= norm;
     }
     for (int i = 0; i < 7; ++i) w.c[0][i] = w.x[i];
-    coefficients<Symmetric>(w, p);
+    coefficients<Symmetric>(w, p, reciprocals);
     V norm_pm1 = {}, norm_p = {};
     for (int i = 0; i < 7; ++i) {
       const V weight = 1.0 / (s.atol + s.rtol * vabs(w.x[i]));
@@ -221,8 +278,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
     double t_new[W] = {};
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;
-      const double a = __builtin_pow(norm_pm1[l], inv_pm1), b = __builtin_pow(norm_p[l], inv_p);
-      double h = (b < a) ? b : a;
+      double h = step_size(norm_pm1[l], norm_p[l], p, inv_pm1, inv_p);
       const double left = horizon - t[l];
       if (left > 0.0 && !(h < left)) h = left;
       if (!(t[l] + h > t[l]) || !__builtin_isfinite(h)) fail_underflow(t[l]);
@@ -231,7 +287,13 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
       t_new[l] = (h == left) ? horizon : t_old[l] + h;
       ++steps[l];
     }
-    for (int i = 0; i < 7; ++i) w.x[i] = horner(&w.c[0][i], 7, p, tau);
+    {  // the seven variables' Horner chains interleaved (each as horner(): the same bits)
+      V v[7];
+      for (int i = 0; i < 7; ++i) v[i] = w.c[p][i];
+      for (int n = p - 1; n >= 0; --n)
+        for (int i = 0; i < 7; ++i) v[i] = v[i] * tau + w.c[n][i];
+      for (int i = 0; i < 7; ++i) w.x[i] = v[i];
+    }
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;
       t[l] = t_new[l];
@@ -248,32 +310,42 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
       w.g2[p] = 2.0 * (cauchy(q2, q3, 7, p) + cauchy(q0, q1, 7, p));
       for (int n = 0; n <= p; ++n) {
         V r1 = {}, r2 = {};
-        for (int j = 0; j <= n; ++j) r1 += w.g1[j] * u2[(n - j) * 7];
-        for (int j = 0; j <= n; ++j) r2 += w.g2[j] * u1[(n - j) * 7];
+        for (int j = 0; j <= n; ++j) r1 += w.g1[j] * u2[(n - j) * 7], r2 += w.g2[j] * u1[(n - j) * 7];
         w.rate[n] = r1 - r2;
       }
     }
-    for (int n = 0; n <= p; ++n)
-      w.kz[n] = cauchy(q0, q0, 7, n) - cauchy(q1, q1, 7, n) - cauchy(q2, q2, 7, n) + cauchy(q3, q3, 7, n);
+    // The four Cauchy squares in one loop (four independent chains instead of four loops of one;
+    // each sum in the same order as cauchy(), so the same bits).
+    for (int n = 0; n <= p; ++n) {
+      V s0 = {}, s1 = {}, s2 = {}, s3 = {};
+      for (int j = 0; j <= n; ++j) {
+        const V *a = w.c[j], *b = w.c[n - j];
+        s0 += a[0] * b[0], s1 += a[1] * b[1], s2 += a[2] * b[2], s3 += a[3] * b[3];
+      }
+      w.kz[n] = s0 - s1 - s2 + s3;
+    }
     w.kz[0] -= cos_stop;
 
     V h = {};
     for (int l = 0; l < W; ++l) h[l] = active[l] ? t[l] - t_old[l] : 0.0;
     V at[kPieces + 1], rate_at[kPieces + 1], kz_at[kPieces + 1];
     at[0] = V{};
-    if constexpr (Extremes) rate_at[0] = horner(w.rate, 1, p, V{});
-    kz_at[0] = horner(w.kz, 1, p, V{});
-    for (int k = 1; k <= kPieces; ++k) {
-      at[k] = h * static_cast<double>(k) / static_cast<double>(kPieces);
-      if constexpr (Extremes) rate_at[k] = horner(w.rate, 1, p, at[k]);
-      kz_at[k] = horner(w.kz, 1, p, at[k]);
-    }
+    for (int k = 1; k <= kPieces; ++k) at[k] = h * static_cast<double>(k) / static_cast<double>(kPieces);
+    if constexpr (Extremes) horner_pieces(w.rate, 1, p, at, rate_at);
+    horner_pieces(w.kz, 1, p, at, kz_at);
 
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;
       const double t0 = t_old[l], hl = h[l];
       double a = 0.0, ra = Extremes ? rate_at[0][l] : 0.0, ka = kz_at[0][l];
       bool crossed = false;
+      if (banded) {  // the band: the piece points up to the crossing (or the step's end)
+        double least = ka;
+        for (int k = 1; k <= kPieces && kz_at[k - 1][l] >= 0.0; ++k) least = kz_at[k][l] < least ? kz_at[k][l] : least;
+        if (least < low_kz) e[l].touched_low = true;
+        const double c = (least < 0.0 ? 0.0 : least) + cos_stop;  // past the crossing: stop_above's
+        if (c < e[l].peak_cos) e[l].peak_cos = c;
+      }
       for (int k = 1; k <= kPieces && !crossed; ++k) {
         const double b = at[k][l], rb = Extremes ? rate_at[k][l] : 0.0, kb = kz_at[k][l];
         double crossing = -1.0;

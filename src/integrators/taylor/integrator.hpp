@@ -80,7 +80,7 @@ class TaylorIntegrator {
       norm_p = std::max(norm_p, std::abs(jet_.c[order_][i]) * weight);
     }
     // +inf when the series ends below order p - 1 (a polynomial motion: the step is exact).
-    double h = std::min(std::pow(norm_pm1, -1.0 / (order_ - 1)), std::pow(norm_p, -1.0 / order_));
+    double h = step_from_norms(norm_pm1, norm_p, order_);  // one pow where it can (series.hpp)
     const double left = horizon_ - t_;
     if (left > 0.0 && !(h < left)) h = left;  // never beyond the horizon (dense output inside)
     if (!(t_ + h > t_) || !std::isfinite(h)) fail("taylor", StepOutcome::StepUnderflow, t_);

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "integrators/taylor/recurrence_kernels.hpp"
 #include "integrators/taylor/series.hpp"
 #include "integrators/taylor/variables.hpp"
 
@@ -65,29 +66,10 @@ struct FactoredAttitudeTerms {
 
 // ---- Each set's coefficients --------------------------------------------------------------------
 
+// Plain and SpinFactored: the outer-product kernels at the machine's width
+// (recurrence_kernels.hpp; the same products and sums, so the same bits as the batch).
 inline void Plain::coefficients(Jet& x, Gamma& g, int p) const {
-  for (int n = 0; n < p; ++n) {
-    AttitudeTerms q;
-    v2d xz_yz = {}, wy_wx = {};                      // gamma
-    v2d w23_w31 = {};                                // (w2 w3, w3 w1)
-    double w12 = 0.0;                                // w1 w2
-    for (int j = 0; j <= n; ++j) {
-      const double *a = x.c[j], *b = x.c[n - j];
-      q.add(a, b);
-      gamma_terms(a, b, xz_yz, wy_wx);
-      w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
-      w12 += a[4] * b[5];
-    }
-    store_gamma(g, n, xz_yz, wy_wx);
-    const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
-    double* next = x.c[n + 1];
-    q.rate(half, next);
-    // Euler: I w' = (I w) x w + m g R (gamma x e3)
-    next[4] = inv * (e1 * w23_w31[0] + ka * g.g2[n]);
-    next[5] = inv * (e2 * w23_w31[1] - kb * g.g1[n]);
-    next[6] = inv * (e3 * w12);
-    next[7] = 0.0;
-  }
+  best_plain_kernel()(x.c, g.g1.data(), g.g2.data(), p, PlainConstants{e1, e2, e3, ka, kb});
 }
 
 inline void General::coefficients(Jet& x, Gamma& g, int p) const {
@@ -126,25 +108,7 @@ inline void General::coefficients(Jet& x, Gamma& g, int p) const {
 }
 
 inline void SpinFactored::coefficients(Jet& x, Gamma& g, int p) const {
-  const double nutation = c_over_a * x.c[0][6];  // rad/s, C w3 / A
-  for (int n = 0; n < p; ++n) {
-    FactoredAttitudeTerms q;
-    v2d xz_yz = {}, wy_wx = {};                      // gamma
-    for (int j = 0; j <= n; ++j) {
-      const double *a = x.c[j], *b = x.c[n - j];
-      q.add(a, b);
-      gamma_terms(a, b, xz_yz, wy_wx);
-    }
-    store_gamma(g, n, xz_yz, wy_wx);
-    const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
-    const double* row = x.c[n];
-    double* next = x.c[n + 1];
-    q.rate(half, next);
-    next[4] = inv * (-nutation * row[5] + ka * g.g2[n]);
-    next[5] = inv * (nutation * row[4] - ka * g.g1[n]);
-    next[6] = 0.0;
-    next[7] = 0.0;
-  }
+  best_factored_kernel()(x.c, g.g1.data(), g.g2.data(), p, FactoredConstants{c_over_a, ka});
 }
 
 inline void DampedTerms::integrals(JetOf<kWidth>& x, const Gamma& g, int n, double gyroscopic, double perp2) {

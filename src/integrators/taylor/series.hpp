@@ -3,6 +3,7 @@
 // power series. A jet (every variable's coefficients, order by order), Cauchy products,
 // Horner's rule, and the root of a function of the step's series. No physics here.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -40,6 +41,30 @@ inline v2d load2(const double* p) {
   return v;
 }
 inline v2d splat(double a) { return v2d{a, a}; }
+
+// min(x^(-1/(p-1)), y^(-1/p)) as std::min of the two std::pow, bit for bit, with one pow
+// wherever the smaller is clear: a < b exactly when x^p > y^(p-1), compared from frexp's
+// mantissas and exponents; a margin of 1e-10 on that ratio is a relative gap of at least
+// 1.8e-13 between a and b, far beyond pow's error (< 1 ulp), so the one pow computed is the
+// smaller of the two. Near a tie, and for zeros, infinities and NaN, both (the batch's kernel
+// does the same, integrators/batch/batch_kernel.hpp).
+inline double step_from_norms(double x, double y, int p) {
+  const double ea = -1.0 / (p - 1), eb = -1.0 / p;
+  if (x > 0.0 && y > 0.0 && std::isfinite(x) && std::isfinite(y)) {
+    int ex = 0, ey = 0;
+    double mx = std::frexp(x, &ex), my = std::frexp(y, &ey);
+    double px = 1.0, py = 1.0;  // mx^p, my^(p-1), in [2^-24, 1]
+    for (int n = p; n > 0; n >>= 1, mx *= mx)
+      if (n & 1) px *= mx;
+    for (int n = p - 1; n > 0; n >>= 1, my *= my)
+      if (n & 1) py *= my;
+    const long d = static_cast<long>(p) * ex - static_cast<long>(p - 1) * ey;
+    const double ratio = d > 60 ? 2.0 : d < -60 ? 0.0 : std::ldexp(px / py, static_cast<int>(d));
+    if (ratio > 1.0 + 1e-10) return std::pow(x, ea);
+    if (ratio < 1.0 - 1e-10) return std::pow(y, eb);
+  }
+  return std::min(std::pow(x, ea), std::pow(y, eb));
+}
 
 // The n-th coefficient of the product of two series.
 inline double cauchy(const Coefficients& a, const Coefficients& b, int n) {

@@ -70,11 +70,12 @@ std::string comparison_text(const Comparison& comparison, double t_end);
 
 /// The sweep's CSV: the header (varied keys, a column per linear model, `lyapunov` (1: proven
 /// Lyapunov stable, SPEC section 7) and `lyapunov_certificate` (its certificate's name),
-/// `nonlinear` if asked) and the rows of grid points begin,
-/// begin + 1, ... with their verdicts.
-std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear);
+/// `nonlinear` if asked, and after it `nonlinear_tolerance` with `tolerance` (`sweep
+/// --tolerance-column`: the rtol that decided each nonlinear verdict, 0 for the closed form))
+/// and the rows of grid points begin, begin + 1, ... with their verdicts.
+std::string sweep_csv_header(const std::vector<SweepAxis>& axes, bool nonlinear, bool tolerance = false);
 std::string sweep_csv_rows(const std::vector<SweepAxis>& axes, std::size_t begin,
-                           const std::vector<SweepVerdict>& verdicts);
+                           const std::vector<SweepVerdict>& verdicts, bool tolerance = false);
 
 /// `heavytop fit-decay --format json`: {"axial", "friction", "spin0": {"value", "uncertainty"
 /// (null when not determined), "fitted", "at_bound"}, "rms_residual" (rad/s), "points",
