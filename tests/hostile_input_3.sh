@@ -67,7 +67,7 @@ done
 # The MPI adapter (heavytop-mpi, dynamically linked, which mpirun's copies of heavytop become)
 # refuses them the same way, once, and reads the binary PLY.
 if [ -x "$(dirname "$H")/heavytop-mpi" ] && command -v mpirun > /dev/null; then
-  mpi=(mpirun --allow-run-as-root --oversubscribe -n 2 "$H" sweep --config mesh.toml --vary spin=0:300:3)
+  mpi=("${mpirun[@]}" --allow-run-as-root --oversubscribe -n 2 "$H" sweep --config mesh.toml --vary spin=0:300:3)
   for f in empty.stl count.stl not.ply box-le-truncated.ply; do
     mesh_body $f
     check "mesh $f under mpirun: refused, exit 2" bash -c "${mpi[*]} --output m.csv > /dev/null 2> err; [ \$? -eq 2 ]"

@@ -4,7 +4,7 @@
 # killed midway makes the job fail with FILE.partial intact, and the rerun resumes it to the
 # identical file; bad input fails once, with status 2, and writes nothing.
 source "$(dirname "$0")/harness.sh"
-mpi=(mpirun --allow-run-as-root --oversubscribe -n 3)
+mpi=("${mpirun[@]}" --allow-run-as-root --oversubscribe -n 3)
 plate=(--config "$(dirname "$0")/../examples/asymmetric-plate.toml")
 
 same() {  # name, then the sweep's arguments: serial and 3 ranks write the same bytes
