@@ -22,6 +22,8 @@
 #include "heavytop/io/config.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/map_file.hpp"
+#include "heavytop/lyapunov.hpp"
+#include "test_support.hpp"
 
 namespace heavytop {
 namespace {
@@ -324,6 +326,35 @@ TEST(DecidedVerdicts, TheToleranceColumnRoundTrips) {
   EXPECT_TRUE(map.nonlinear);
   EXPECT_EQ(map.verdicts.size(), 3u);
   EXPECT_EQ(*map.verdicts[1].nonlinear, true);
+}
+// The rows of bodies that Arnold's theorem proves stable (kam, kam-markeev) are a resumed sweep's
+// too, in CSV and packed records: the check knew only the first three certificates, and a resume
+// recomputed everything from the first such row on. The property itself: the certificates that
+// prove stability are exactly those lyapunov_stability gives with a Stable verdict.
+TEST(DecidedVerdicts, ArnoldsCertificatesAreKeptByTheResume) {
+  const std::vector<SweepAxis> axes{parse_sweep_axis("spin=100:300:3")};
+  std::vector<SweepVerdict> v(3);
+  const LyapunovCertificate certificates[] = {LyapunovCertificate::Kam, LyapunovCertificate::KamMarkeev,
+                                              LyapunovCertificate::Resonance};
+  for (std::size_t i = 0; i < 3; ++i) {
+    v[i].lyapunov_certificate = certificates[i];
+    v[i].lyapunov = proves_stability(certificates[i]);
+    v[i].nonlinear = true;
+  }
+  EXPECT_TRUE(v[0].lyapunov && v[1].lyapunov && !v[2].lyapunov);
+  EXPECT_EQ(io::valid_journal_records(io::sweep_csv_rows(axes, 0, v), axes, true, false), 3u);
+  std::string packed;
+  io::pack_verdicts(v, packed);
+  EXPECT_EQ(io::valid_journal_records(packed, axes, true, true), 3u);
+  // lyapunov_stability's Stable verdicts over asymmetric tops (index 2: C below A and B) carry exactly these.
+  std::size_t arnold = 0;
+  for (double b : {1.05, 1.2, 1.4})
+    for (double spin = 0.5; spin < 200.0; spin *= 1.3) {
+      const LyapunovVerdict verdict = lyapunov_stability(test_support::make_body(1.0, b, 0.6, 1.0), spin);
+      EXPECT_EQ(verdict.verdict == LyapunovVerdictKind::Stable, proves_stability(verdict.certificate)) << b << " " << spin;
+      arnold += verdict.certificate == LyapunovCertificate::Kam || verdict.certificate == LyapunovCertificate::KamMarkeev;
+    }
+  EXPECT_GT(arnold, 0u);
 }
 
 }  // namespace

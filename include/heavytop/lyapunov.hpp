@@ -43,6 +43,9 @@ inline constexpr LyapunovCertificate kLastLyapunovCertificate = LyapunovCertific
 
 std::string_view name(LyapunovVerdictKind verdict);      ///< "stable" | "unstable" | "undecided"
 std::string_view name(LyapunovCertificate certificate);  ///< SPEC section 7's spelling
+/// True for the certificates that prove stability (energy-casimir, chetaev, critical-quartic,
+/// kam, kam-markeev): lyapunov_stability's verdict is Stable exactly with these.
+bool proves_stability(LyapunovCertificate certificate);
 
 /// The Lyapunov verdict at one spin.
 struct LyapunovVerdict {

@@ -273,15 +273,6 @@ std::vector<SweepVerdict> unpack_verdicts(std::string_view bytes, double sweep_r
   return out;
 }
 
-namespace {
-
-bool proves_stable(LyapunovCertificate c) {
-  return c == LyapunovCertificate::EnergyCasimir || c == LyapunovCertificate::Chetaev ||
-         c == LyapunovCertificate::CriticalQuartic;
-}
-
-}  // namespace
-
 std::size_t valid_journal_records(std::string_view records, const std::vector<SweepAxis>& axes, bool nonlinear,
                                   bool packed, bool tolerance) {
   tolerance = tolerance && nonlinear;
@@ -290,9 +281,9 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
   if (packed) {
     for (; n < total && (n + 1) * kPackedVerdictSize <= records.size(); ++n) {
       const auto* r = reinterpret_cast<const unsigned char*>(records.data() + n * kPackedVerdictSize);
-      if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > static_cast<unsigned char>(LyapunovCertificate::None))
+      if (r[0] > 1 || r[1] > 1 || r[2] > 1 || r[3] > 1 || r[4] > static_cast<unsigned char>(kLastLyapunovCertificate))
         break;
-      if ((r[3] == 1) != proves_stable(static_cast<LyapunovCertificate>(r[4]))) break;
+      if ((r[3] == 1) != proves_stability(static_cast<LyapunovCertificate>(r[4]))) break;
       const int verdict = r[5] & 3, class_ = r[5] >> 2;  // class_: the deciding tolerance (pack_verdicts)
       if (nonlinear ? verdict > 1 : verdict != 2) break;
       if (tolerance ? class_ < 1 || class_ > 3 : class_ != 0) break;
@@ -328,7 +319,7 @@ std::size_t valid_journal_records(std::string_view records, const std::vector<Sw
     v.lyapunov = lyapunov == 1;
     const auto certificate = std::find_if(std::begin(kCertificates), std::end(kCertificates),
                                           [&](LyapunovCertificate x) { return name(x) == cell[c + 4]; });
-    ok = ok && certificate != std::end(kCertificates) && proves_stable(*certificate) == v.lyapunov;
+    ok = ok && certificate != std::end(kCertificates) && proves_stability(*certificate) == v.lyapunov;
     if (!ok) break;
     v.lyapunov_certificate = *certificate;
     if (nonlinear) {

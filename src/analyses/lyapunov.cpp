@@ -132,6 +132,12 @@ std::string_view name(LyapunovCertificate certificate) {
   return "none";
 }
 
+bool proves_stability(LyapunovCertificate certificate) {
+  using C = LyapunovCertificate;
+  return certificate == C::EnergyCasimir || certificate == C::Chetaev || certificate == C::CriticalQuartic ||
+         certificate == C::Kam || certificate == C::KamMarkeev;
+}
+
 LyapunovVerdict lyapunov_stability(const Body& body, double spin) {
   validate(body);
   refuse_general(body, "the Lyapunov analysis");
