@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #if defined(__SANITIZE_ADDRESS__)
 #define HEAVYTOP_SANITIZED_CHILD 1
 #elif defined(__has_feature)
@@ -32,6 +33,7 @@
 #endif
 #ifdef HEAVYTOP_SANITIZED_CHILD
 extern "C" void __sanitizer_set_death_callback(void (*callback)(void));
+extern "C" void __sanitizer_set_report_path(const char* path);
 #endif
 #endif
 
@@ -668,6 +670,9 @@ StabilityMap read_map(const std::string& path, const std::string& key) {
     // A sanitizer's report in the child is the refusal below, not the caller's crash: the death
     // callback the caller set (libFuzzer's, which saves the input as a crash) is not run here.
     __sanitizer_set_death_callback(+[] { ::_exit(6); });
+    // Its reports go where scripts/sanitize.sh keeps them apart (they are libhdf5's, on
+    // corrupted files the parent refuses; the script checks that each one is inside libhdf5).
+    if (const char* path = std::getenv("HEAVYTOP_CHILD_REPORT_PATH")) __sanitizer_set_report_path(path);
 #endif
     ::close(channel[0]);
     std::string out;
