@@ -1,7 +1,10 @@
 // heavytop simulate: one model's motion, theta(t), phi(t) and their rates, as CSV or JSON.
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <iostream>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -33,6 +36,13 @@ struct SimulateFlags {
   long long max_steps = 0;
   CLI::Option* max_steps_option = nullptr;
 };
+
+// A core key as its flag: "t_end" -> "--t-end".
+std::string flag_spelling(std::string_view key) {
+  std::string flag = "--" + std::string(key);
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
 
 // --format json holds the whole trajectory (11 columns of doubles, then the text) in memory.
 constexpr long long kMaxJsonSamples = 2'000'000;
@@ -94,36 +104,35 @@ Action add_simulate_command(CLI::App& app) {
     apply_setting(config, "simulate.step", o->step_option, o->options.splitting.step);
     apply_setting(config, "simulate.order", o->order_option, o->options.splitting.order);
 
-    const auto model = model_from_name(o->model);
-    if (!model) throw InvalidInput("--model", "must be one of " + model_names(", "));
-    const bool nonlinear = *model == Model::Nonlinear, linear = linear_kind(*model).has_value();
-    if (!nonlinear) inputs->refuse_general("simulate --model " + o->model);
-    if (*model == Model::LagrangeExact) validate_symmetric(inputs->body());
-    if (o->method != "analytic" && o->method != "numeric")
-      throw InvalidInput("--method", "must be analytic or numeric");
-    if (!(std::isfinite(o->t_end) && o->t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
-    if (o->samples < 2 || o->samples > 100'000'000) throw InvalidInput("--samples", "must be an integer in [2, 100000000]");
-    if (!linear && o->method_option->count())
-      throw InvalidInput("--method", "applies to the linear models only");
-    const auto integrator = integrator_from_name(o->integrator);
-    if (!integrator) throw InvalidInput("--integrator", "must be " + integrator_names(", ", " or "));
-    for (CLI::Option* given : {o->integrator_option, o->step_option, o->order_option, o->max_steps_option})
-      if (given->count() && !nonlinear)
-        throw InvalidInput(given->get_name(), "applies to --model nonlinear only");
-    // The tolerances: the nonlinear integrators', and the linear models' numeric route (the
-    // matrix exponential takes none; the closed forms and lagrange-exact are exact).
-    for (CLI::Option* given : {o->rtol_option, o->atol_option})
-      if (given->count() && !nonlinear)
-        throw InvalidInput(given->get_name(), "applies to --model nonlinear only (the other models are closed "
-                                              "forms or a matrix exponential, exact to rounding)");
-    if (*integrator != Integrator::Splitting && (o->step_option->count() || o->order_option->count()))
-      throw InvalidInput(o->step_option->count() ? "--step" : "--order", "applies to --integrator splitting only");
-    o->options.method = o->method == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;
-    // Unasked, a damped linear model takes the route that covers it (the closed form does not).
-    if (!o->method_option->count() && !config.settings.count("simulate.method") &&
-        inputs->body().damping.transverse > 0.0)
-      o->options.method = LinearMethod::Numeric;
-    o->options.integrator = *integrator;
+    // The core's rules (resolve()); here only its keys spelled as flags and the general body's
+    // refusal in the command line's words. Flags are asked for; the configuration's values are not.
+    SimulateRequest request;
+    request.model = {o->model, o->model_option->count() > 0};
+    if (o->method_option->count() || config.settings.count("simulate.method"))
+      request.method = {o->method, o->method_option->count() > 0};
+    request.integrator = {o->integrator, o->integrator_option->count() > 0};
+    request.t_end = o->t_end;
+    request.samples = o->samples;
+    request.rtol = {o->options.adaptive.rtol, o->rtol_option->count() > 0};
+    request.atol = {o->options.adaptive.atol, o->atol_option->count() > 0};
+    request.step = {o->options.splitting.step, o->step_option->count() > 0};
+    request.order = {o->options.splitting.order, o->order_option->count() > 0};
+    if (o->max_steps_option->count()) request.max_steps = Requested<long long>::of(o->max_steps);
+    ResolvedSimulate resolved;
+    try {
+      resolved = resolve(request, inputs->body(), [&](Model m) {
+        if (m != Model::Nonlinear) inputs->refuse_general("simulate --model " + o->model);
+      });
+    } catch (const InvalidInput& e) {
+      throw spelled(e, Spelling{[](std::string_view key) { return flag_spelling(key); },
+                                [](std::string_view key, std::string_view value) {
+                                  return fmt::format("{} {}", flag_spelling(key), value);
+                                },
+                                integrator_names(", ", " or ")});
+    }
+    o->options.method = resolved.options.method;
+    o->options.integrator = resolved.options.integrator;
+    const std::optional<Model> model = resolved.model;
 
     const bool json = inputs->format() == "json";
     if (json && o->samples > kMaxJsonSamples)

@@ -104,6 +104,67 @@ struct SimulateOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// One option of a SimulateRequest: its value if the person gave one (on the command line or
+/// in its configuration file; as a keyword argument in Python), and whether they asked for it
+/// for this run (a flag or a keyword argument: the rules of what applies to which model check
+/// these; a configuration file's [simulate] values are defaults, not asked).
+template <class T>
+struct Requested {
+  std::optional<T> value;
+  bool asked = false;
+  /// The given value, asked for.
+  static Requested of(std::optional<T> v) { return {v, v.has_value()}; }
+};
+
+/// A simulate() run as a person asks for it, every option by the core's key; resolve() turns
+/// it into the options or refuses it. The command line and Python fill it and spell the keys
+/// of its refusals their way (spelled()).
+struct SimulateRequest {
+  Requested<std::string> model;       ///< "model": a name of kModels; unset: "nonlinear"
+  Requested<std::string> method;      ///< "method": "analytic" or "numeric" (the linear models)
+  Requested<std::string> integrator;  ///< "integrator": a name of kIntegrators, or "adaptive"; unset: "auto"
+  double t_end = 10.0;                ///< "t_end": s, the run's end (finite, > 0)
+  long long samples = 1001;           ///< "samples": in [2, 100000000]
+  Requested<double> rtol, atol;       ///< "rtol", "atol": Tolerances (the nonlinear model)
+  Requested<double> step;             ///< "step": s, SplittingOptions::step (the splitting)
+  Requested<int> order;               ///< "order": SplittingOptions::order (the splitting)
+  Requested<long long> max_steps;     ///< "max_steps": both integrators' (< 1: refused by simulate())
+};
+
+/// What resolve() makes of a request.
+struct ResolvedSimulate {
+  Model model = Model::Nonlinear;
+  double t_end = 10.0;      ///< s
+  std::size_t samples = 0;  ///< at t_i = i t_end / (samples - 1)
+  SimulateOptions options;  ///< progress unset
+};
+
+/// The options of `request` for `body`, or InvalidInput(key, rule) for the first rule it breaks,
+/// in this order: "model" a known name; then `check_body(model)` if set (an adapter's refusal of
+/// a general body, in its words) and, for lagrange-exact, validate_symmetric; "method" analytic
+/// or numeric; "t_end" finite and > 0; "samples" in [2, 100000000]; "method" asked only for a
+/// linear model; "integrator" a known name; "integrator", "step", "order", "max_steps", then
+/// "rtol" and "atol" asked only for the nonlinear model; "step" and "order" asked only with the
+/// splitting. Unasked, a damped linear model takes the numeric route (its closed form is the
+/// undamped one). A rule naming another option writes it {key=value} and the integrators'
+/// list {integrators}: spelled() writes them an adapter's way. The values' ranges (rtol, atol,
+/// step, order, max_steps) are simulate()'s checks.
+ResolvedSimulate resolve(const SimulateRequest& request, const Body& body,
+                         const std::function<void(Model)>& check_body = {});
+
+/// How an adapter writes the core's keys: an option's key ("t_end" -> "--t-end" or "t_end"),
+/// a key with a value in a rule ("model", "nonlinear" -> "--model nonlinear" or
+/// 'model="nonlinear"'), and the list of integrators.
+struct Spelling {
+  std::function<std::string(std::string_view key)> key;
+  std::function<std::string(std::string_view key, std::string_view value)> option;
+  std::string integrators;
+};
+
+/// `refusal` (from resolve()) with its key, if one of SimulateRequest's, and the {key=value} and
+/// {integrators} of its rule written by `spelling`; any other key (e.g. "body.B") unchanged.
+InvalidInput spelled(const InvalidInput& refusal, const Spelling& spelling);
+
 /// How a simulation ended.
 enum class Termination {
   Success,  ///< every sample computed

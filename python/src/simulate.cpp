@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -30,9 +31,9 @@ py::dict summary_dict(const SimulationSummary& s) {
                   "report"_a = s.BriefReport());
 }
 
-/// The command line's checks of `heavytop simulate`, in its order, with the keyword
-/// arguments' names as keys; then the core's simulate() (which checks rtol, atol, step,
-/// order and max_steps). Returns (columns, summary): a failed run is reported in the summary.
+/// The core's resolve() of the request (the rules `heavytop simulate` applies, in its order),
+/// the keyword arguments' names as keys; then the core's simulate() (which checks rtol, atol,
+/// step, order and max_steps). Returns (columns, summary): a failed run is reported in the summary.
 py::tuple simulate(const Body& body, const std::string& model_name, double spin, double theta0, double phi0,
                    double theta_rate0, double phi_rate0, double t_end, long long samples,
                    const std::optional<std::string>& method, const std::optional<std::string>& integrator,
@@ -40,42 +41,37 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
                    std::optional<int> order, std::optional<long long> max_steps) {
   validate(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
-  const auto model = model_from_name(model_name);
-  if (!model) throw InvalidInput("model", "must be one of " + model_names(", "));
-  const bool linear = linear_kind(*model).has_value(), nonlinear = *model == Model::Nonlinear;
-  if (!nonlinear) io::refuse_general_in(body, "simulate --model " + model_name);  // as the command line
-  if (*model == Model::LagrangeExact) validate_symmetric(body);
-  // Unasked, a damped linear model takes the route that covers it (the closed form does not).
-  const std::string how = method.value_or(body.damping.transverse > 0.0 ? "numeric" : "analytic");
-  if (how != "analytic" && how != "numeric") throw InvalidInput("method", "must be analytic or numeric");
-  require_positive("t_end", t_end);
-  require_count("samples", samples, 2, 100'000'000);
-  if (method && !linear) throw InvalidInput("method", "applies to the linear models only");
-  const auto chosen = integrator_from_name(integrator.value_or("auto"));  // the command line's default
-  if (!chosen) throw InvalidInput("integrator", "must be auto, taylor, dop853, dopri5 (adaptive) or splitting");
-  const std::pair<const char*, bool> nonlinear_only[] = {
-      {"integrator", integrator.has_value()}, {"step", step.has_value()}, {"order", order.has_value()},
-      {"max_steps", max_steps.has_value()}};
-  for (const auto& [key, given] : nonlinear_only)
-    if (given && !nonlinear) throw InvalidInput(key, "applies to model=\"nonlinear\" only");
-  if (*chosen != Integrator::Splitting && (step || order))
-    throw InvalidInput(step ? "step" : "order", "applies to integrator=\"splitting\" only");
-
-  SimulateOptions options;
-  options.method = how == "numeric" ? LinearMethod::Numeric : LinearMethod::Analytic;
-  options.integrator = *chosen;
-  if (rtol) options.adaptive.rtol = *rtol;
-  if (atol) options.adaptive.atol = *atol;
-  if (step) options.splitting.step = *step;
-  if (order) options.splitting.order = *order;
-  if (max_steps) {
-    const auto steps = static_cast<std::size_t>(std::max(0LL, *max_steps));  // < 1: the core's "must be > 0"
-    (*chosen == Integrator::Splitting ? options.splitting.max_steps : options.adaptive.max_steps) = steps;
+  // The core's rules (resolve()); here only its keys spelled as keyword arguments and the
+  // general body's refusal in the command line's words.
+  SimulateRequest request;
+  request.model = Requested<std::string>::of(model_name);
+  request.method = Requested<std::string>::of(method);
+  request.integrator = Requested<std::string>::of(integrator);
+  request.t_end = t_end;
+  request.samples = samples;
+  request.rtol = Requested<double>::of(rtol);
+  request.atol = Requested<double>::of(atol);
+  request.step = Requested<double>::of(step);
+  request.order = Requested<int>::of(order);
+  request.max_steps = Requested<long long>::of(max_steps);
+  ResolvedSimulate resolved;
+  try {
+    resolved = resolve(request, body, [&](Model m) {
+      if (m != Model::Nonlinear) io::refuse_general_in(body, "simulate --model " + model_name);  // as the command line
+    });
+  } catch (const InvalidInput& e) {
+    throw spelled(e, Spelling{[](std::string_view key) { return std::string(key); },
+                              [](std::string_view key, std::string_view value) {
+                                return fmt::format("{}=\"{}\"", key, value);
+                              },
+                              "auto, taylor, dop853, dopri5 (adaptive) or splitting"});
   }
+  const std::optional<Model> model = resolved.model;
+  SimulateOptions& options = resolved.options;
   options.progress = poll_signals();
 
   Simulation run = without_gil([&] {
-    return heavytop::simulate(*model, body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options);
+    return heavytop::simulate(*model, body, state, sample_times(resolved.t_end, resolved.samples), options);
   });
   Trajectory& tr = run.trajectory;
   const auto names = tr.column_names();
