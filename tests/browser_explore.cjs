@@ -146,6 +146,27 @@ async function guardedPage(browser, folder) {
   return { page, foreign, errors };
 }
 
+// The frame whose URL ends with `suffix` once its page says it is ready. The frame is looked up
+// afresh at each poll: Chromium may commit a file:// page in another process, a new Frame, and a
+// wait on an earlier one never ends (the "ready" timeouts under load). On time-out, what each
+// frame showed is in the error.
+async function readyFrame(page, suffix, timeout) {
+  const deadline = Date.now() + timeout;
+  let seen = [];
+  while (Date.now() < deadline) {
+    seen = [];
+    for (const f of page.frames()) {
+      let state = "?";
+      try { state = await f.evaluate(() => `ready=${document.body && document.body.dataset.ready}, ${document.readyState}`); }
+      catch (err) { state = `not evaluable (${String(err.message || err).split("\n")[0]})`; }
+      seen.push(`${f.url()} [${f.isDetached() ? "detached" : "attached"}]: ${state}`);
+      if (f.url().endsWith(suffix) && !f.isDetached() && state.startsWith("ready=1")) return f;
+    }
+    await new Promise((r) => setTimeout(r, 250));
+  }
+  throw new Error(`no ready frame ending in ${suffix} after ${timeout} ms; frames: ${seen.join(" | ")}`);
+}
+
 // The explorer inside a report: the report's folder only, no console error.
 async function checkReport(browser) {
   const folder = path.resolve(reportDir);
@@ -158,8 +179,7 @@ async function checkReport(browser) {
   // The frame that holds explore.html, not the iframe's first about:blank: a file:// page is its
   // own origin, so Chromium may commit explore.html in another process, a new Frame, and a wait on
   // the old one never ends (the "ready" timeouts under load).
-  const frame = await page.waitForFrame((f) => f.url().endsWith("/explore.html"), { timeout: 30000 });
-  await frame.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 30000 });
+  const frame = await readyFrame(page, "/explore.html", 60000);
   const inside = await frame.evaluate(() => ({ spin: Number(document.getElementById("spin").value), answer: document.getElementById("answer").textContent,
                                                canvas: !!document.getElementById("scene-canvas"), version: window.heavytop.version,
                                                A: Number(document.getElementById("A").value) }));
