@@ -41,8 +41,7 @@ Action add_lifetime_command(CLI::App& app) {
     }
     const Lifetime life = [&] {
       ProgressBar bar("lifetime", spin_decay(inputs->body(), inputs->state(), o).horizon);
-      o.integrator.progress = [&bar](double t) { bar.update(t); };
-      return lifetime(inputs->body(), inputs->state(), o);
+      return lifetime(inputs->body(), inputs->state(), o, [&bar](double t) { bar.update(t); });
     }();
     write_output(inputs->output(), inputs->format() == "json"
                                        ? io::lifetime_json(life)

@@ -144,15 +144,15 @@ Action add_simulate_command(CLI::App& app) {
       o->options.adaptive.max_steps = o->options.splitting.max_steps = static_cast<std::size_t>(o->max_steps);
     }
 
-    ProgressBar progress("simulate", o->t_end);
-    o->options.progress = [&](double t) { progress.update(t); };
+    ProgressBar bar("simulate", o->t_end);
+    const Progress progress = [&bar](double t) { bar.update(t); };
     const SampleGrid grid{o->t_end, static_cast<std::size_t>(o->samples)};
     // Open the output first: a path that cannot be written is bad input, found before any work.
     io::OutputStream out(inputs->output(), "--output");
     SimulationSummary summary;
     if (json) {  // the whole trajectory in memory (at most kMaxJsonSamples)
       const Simulation run = simulate(*model, inputs->body(), inputs->state(), sample_times(grid.t_end, grid.count),
-                                      o->options);
+                                      o->options, progress);
       summary = run.summary;
       if (!summary.ok()) throw Failure(summary.message);
       out.write(io::trajectory_json(*model, inputs->body(), inputs->state(), run.trajectory,
@@ -168,7 +168,7 @@ Action add_simulate_command(CLI::App& app) {
         header = true;
         out.write(io::trajectory_csv_rows(part, 0, part.size()));
       };
-      summary = simulate_streaming(*model, inputs->body(), inputs->state(), grid, o->options, sink, 64);
+      summary = simulate_streaming(*model, inputs->body(), inputs->state(), grid, o->options, sink, 64, nullptr, progress);
       if (!summary.ok()) throw Failure(summary.message);
     }
     for (const std::string& warning : summary.warnings) std::cerr << "heavytop: warning: " << warning << "\n";

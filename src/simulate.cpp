@@ -24,8 +24,7 @@ constexpr std::array<std::string_view, 5> kModelNames = {"first-order", "body-fi
 /// The closed forms sample by sample: each sample is computed on its own, so a piece of the
 /// times at a time gives the same numbers.
 template <class Evaluate>
-void closed_form_in_chunks(const detail::SampleStream& samples, const Evaluate& evaluate,
-                           const std::function<void(double)>& progress) {
+void closed_form_in_chunks(const detail::SampleStream& samples, const Evaluate& evaluate) {
   std::vector<double> times;
   for (std::size_t begin = 0; begin < samples.count; begin += samples.chunk) {
     const std::size_t end = std::min(samples.count, begin + std::min(samples.chunk, samples.count - begin));
@@ -33,7 +32,7 @@ void closed_form_in_chunks(const detail::SampleStream& samples, const Evaluate& 
     for (std::size_t i = begin; i < end; ++i) times[i - begin] = samples.time(i);
     Trajectory part = evaluate(times);
     samples.flush(part);
-    if (progress) progress(times.back());
+    if (samples.progress) samples.progress(times.back());
     if (samples.chunk == static_cast<std::size_t>(-1)) break;
   }
 }
@@ -137,20 +136,21 @@ Integrator resolve_integrator(Integrator asked, const Body& body, const Toleranc
 }
 
 TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
-                           double stop_above, const Tolerances& tolerances, NonlinearSummary* summary) {
+                           double stop_above, const Tolerances& tolerances, NonlinearSummary* summary,
+                           const Progress& progress) {
   switch (resolve_integrator(integrator, body, tolerances)) {
     case Integrator::Taylor: {
       TaylorSummary taylor;
       const TiltExtremes e =
-          taylor_tilt_extremes(body, initial, horizon, stop_above, tolerances, summary ? &taylor : nullptr);
+          taylor_tilt_extremes(body, initial, horizon, stop_above, tolerances, summary ? &taylor : nullptr, progress);
       if (summary) *summary = taylor.work;
       return e;
     }
-    case Integrator::Dop853: return dop853_tilt_extremes(body, initial, horizon, stop_above, tolerances);
+    case Integrator::Dop853: return dop853_tilt_extremes(body, initial, horizon, stop_above, tolerances, progress);
     case Integrator::Splitting:
       throw InvalidInput("integrator", fmt::format("must be {} (the splitting has no error control to judge a run by)",
                                                    integrator_names(", ", " or ", false)));
-    default: return tilt_extremes(body, initial, horizon, stop_above, tolerances, summary);
+    default: return tilt_extremes(body, initial, horizon, stop_above, tolerances, summary, progress);
   }
 }
 
@@ -245,18 +245,16 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
       const LinearModel linear = linear_model(*kind, body);
       closed_form_in_chunks(samples, [&](const std::vector<double>& t) {
         return simulate_linear(linear, initial, t, options.method);
-      }, options.progress);
+      });
     } else if (model == Model::LagrangeExact) {
       s.solver = "elliptic functions";
       closed_form_in_chunks(samples, [&](const std::vector<double>& t) {
         return simulate_lagrange_exact(body, initial, t);
-      }, options.progress);
+      });
     } else if (options.integrator == Integrator::Splitting) {
       s.solver = fmt::format("splitting, order {}, step {:g} s", options.splitting.order, options.splitting.step);
-      SplittingOptions splitting = options.splitting;
-      if (options.progress) splitting.progress = options.progress;
       SplittingSummary summary;
-      detail::stream_splitting(body, initial, samples, splitting, &summary);
+      detail::stream_splitting(body, initial, samples, options.splitting, &summary);
       s.steps = summary.steps + summary.partial_steps;
       s.rhs_evaluations = summary.kicks;
       s.drifts = static_cast<const Drifts&>(summary);
@@ -266,8 +264,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
             "this motion (halve it, or use the adaptive integrator)",
             summary.max_relative_energy_drift, kSplittingEnergyWarning, options.splitting.step));
     } else {
-      Tolerances adaptive = options.adaptive;
-      if (options.progress) adaptive.progress = options.progress;
+      const Tolerances& adaptive = options.adaptive;
       NonlinearSummary summary;
       const Integrator chosen = resolve_integrator(options.integrator, body, adaptive);
       if (chosen == Integrator::Taylor) {
@@ -306,19 +303,22 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
 
 SimulationSummary simulate_streaming(Model model, const Body& body, const InitialState& initial,
                                      const SampleGrid& grid, const SimulateOptions& options,
-                                     const TrajectorySink& sink, std::size_t chunk, NonlinearSummary* adaptive) {
+                                     const TrajectorySink& sink, std::size_t chunk, NonlinearSummary* adaptive,
+                                     const Progress& progress) {
   if (!(std::isfinite(grid.t_end) && grid.t_end >= 0.0)) throw InvalidInput("t_end", "must be finite and >= 0");
   const detail::SampleStream stream{grid.count, [&grid](std::size_t i) { return grid.time(i); },
-                                    std::max<std::size_t>(chunk, 1), [&sink](Trajectory& part) { sink(part); }};
+                                    std::max<std::size_t>(chunk, 1), [&sink](Trajectory& part) { sink(part); },
+                                    progress};
   return run(model, body, initial, stream, options, "t_end", adaptive);
 }
 
 Simulation simulate(Model model, const Body& body, const InitialState& initial, const std::vector<double>& times,
-                    const SimulateOptions& options) {
+                    const SimulateOptions& options, const Progress& progress) {
   detail::validate_times(times);
   Simulation result;
   NonlinearSummary adaptive;
-  result.summary = run(model, body, initial, detail::gather(times, result.trajectory), options, "times", &adaptive);
+  result.summary =
+      run(model, body, initial, detail::gather(times, result.trajectory, progress), options, "times", &adaptive);
   if (model == Model::Nonlinear && options.integrator != Integrator::Splitting) result.adaptive = adaptive;
   return result;
 }

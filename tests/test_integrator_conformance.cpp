@@ -4,8 +4,10 @@
 // splitting, each driven through simulate() and simulate_streaming() as the command line
 // drives them. Each property is one a broken sample loop, writer or stepper would violate.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -78,8 +80,8 @@ class Conformance : public ::testing::TestWithParam<Case> {
     return o;
   }
   bool splitting() const { return GetParam().integrator == Integrator::Splitting; }
-  Simulation run(const std::vector<double>& times, const SimulateOptions& o) const {
-    return simulate(Model::Nonlinear, GetParam().body, GetParam().start, times, o);
+  Simulation run(const std::vector<double>& times, const SimulateOptions& o, const Progress& progress = {}) const {
+    return simulate(Model::Nonlinear, GetParam().body, GetParam().start, times, o, progress);
   }
   Simulation run(const std::vector<double>& times) const { return run(times, options()); }
 };
@@ -194,17 +196,44 @@ TEST_P(Conformance, NonFiniteStateFailsInOneLine) {
 // A progress callback that throws stops the run there: its message is the failure's, the
 // samples before it are kept, no later one is computed.
 TEST_P(Conformance, ThrowingProgressStopsTheRun) {
-  SimulateOptions o = options();
   int calls = 0;
-  o.progress = [&calls](double t) {
+  const Simulation s = run(sample_times(1.0, 101), options(), [&calls](double t) {
     if (++calls == 3) throw std::runtime_error("stopped at " + std::to_string(t));
-  };
-  const Simulation s = run(sample_times(1.0, 101), o);
+  });
   ASSERT_FALSE(s.summary.ok());
   EXPECT_EQ(s.summary.message.rfind("stopped at ", 0), 0u) << s.summary.message;
   EXPECT_EQ(calls, 3);
   EXPECT_LE(s.trajectory.size(), 3u);
   EXPECT_EQ(s.trajectory.size(), s.summary.samples);
+}
+
+// Every tilt scan (the sweep's, lifetime's, the answer's) reports its progress the same way:
+// times in [0, horizon], non-decreasing, the last the scan's end; a throw stops the scan (the
+// exception goes through).
+TEST_P(Conformance, TiltScanReportsProgressAndStopsOnAThrow) {
+  if (splitting()) GTEST_SKIP() << "the splitting has no tilt scan (refused: no error control)";
+  const Tolerances tolerances = options().adaptive;
+  const double horizon = 1.0;
+  std::vector<double> seen;
+  try {
+    tilt_extremes(GetParam().integrator, GetParam().body, GetParam().start, horizon,
+                  std::numeric_limits<double>::infinity(), tolerances, nullptr, [&seen](double t) { seen.push_back(t); });
+  } catch (const InvalidInput& e) {
+    GTEST_SKIP() << "this integrator scans no such body: " << e.what();
+  }
+  ASSERT_FALSE(seen.empty());
+  EXPECT_GE(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), horizon);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  int calls = 0;
+  EXPECT_THROW(tilt_extremes(GetParam().integrator, GetParam().body, GetParam().start, horizon,
+                             std::numeric_limits<double>::infinity(), tolerances, nullptr,
+                             [&calls](double) {
+                               ++calls;
+                               throw std::runtime_error("stopped");
+                             }),
+               std::runtime_error);
+  EXPECT_EQ(calls, 1);
 }
 
 // The summary's counts add up, by each integrator's own rule.

@@ -58,8 +58,10 @@ struct Comparison {
 /// spin w0 (rad/s) when model (4) is stable there, else 20 gravity times (10 s without gravity).
 double natural_horizon(const Body& body, double spin);
 
-/// Runs every model from `state` at `times` (s) and compares it with `nonlinear`.
+/// Runs every model from `state` at `times` (s) and compares it with `nonlinear`; `progress` is
+/// the nonlinear run's.
 Comparison compare_models(const Body& body, const InitialState& state,
-                          const std::vector<double>& times, const Tolerances& options = {});
+                          const std::vector<double>& times, const Tolerances& options = {},
+                          const Progress& progress = {});
 
 }  // namespace heavytop

@@ -21,7 +21,8 @@ namespace heavytop {
 /// rhs_evaluations counts every evaluation (12 per attempt, 3 more per step whose dense
 /// output is used).
 Trajectory simulate_dop853(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const Tolerances& options = {}, NonlinearSummary* summary = nullptr);
+                           const Tolerances& options = {}, NonlinearSummary* summary = nullptr,
+                           const Progress& progress = {});
 
 /// tilt_extremes() (nonlinear.hpp) by DOP853: the tilt's extrema over [0, horizon] (s) located
 /// on the dense output at the roots of d(k_zeta)/dt, stopping at the first crossing of
@@ -29,6 +30,6 @@ Trajectory simulate_dop853(const Body& body, const InitialState& initial, const 
 /// beyond it). For sweeps with --integrator dop853. Same keys ("horizon", "max_tilt") and
 /// failures as simulate_dop853().
 TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial, double horizon, double stop_above,
-                                  const Tolerances& options = {});
+                                  const Tolerances& options = {}, const Progress& progress = {});
 
 }  // namespace heavytop

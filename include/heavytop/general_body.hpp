@@ -61,13 +61,15 @@ ConservedQuantities general_conserved_quantities(const Body& body, const RigidBo
 std::vector<RigidBodyState> integrate_general_body(const Body& body, const RigidBodyState& x0,
                                                    const std::vector<double>& times,
                                                    const Tolerances& options = {},
-                                                   NonlinearSummary* summary = nullptr);
+                                                   NonlinearSummary* summary = nullptr,
+                                                   const Progress& progress = {});
 
 /// simulate_nonlinear() for the general body: the body axes start on Q(phi0, theta0) (SPEC
 /// section 2 and 11), k is body z; the same columns (angles by SPEC section 2, then energy,
 /// vertical_momentum, axial_momentum = (I w).e3 and their drifts). Throws as
 /// integrate_general_body().
 Trajectory simulate_general_body(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                                 const Tolerances& options = {}, NonlinearSummary* summary = nullptr);
+                                 const Tolerances& options = {}, NonlinearSummary* summary = nullptr,
+                                 const Progress& progress = {});
 
 }  // namespace heavytop

@@ -19,6 +19,7 @@
 #include "heavytop/lyapunov.hpp"        // the real body's Lyapunov verdict and the wander
 #include "heavytop/normal_form.hpp"     // the order-4 Birkhoff normal form (Arnold, Markeev)
 #include "heavytop/linear_motion.hpp"   // motion of the linear models
+#include "heavytop/progress.hpp"        // the progress callback, an argument of a run
 #include "heavytop/nonlinear.hpp"       // the full rigid body, integrated adaptively
 #include "heavytop/splitting.hpp"       // the structure-preserving splitting integrator
 #include "heavytop/taylor.hpp"          // the Taylor-series integrator of the full body

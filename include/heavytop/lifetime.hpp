@@ -20,7 +20,7 @@ struct LifetimeOptions {
   std::optional<double> horizon;
   /// rad, the tilt from the upward vertical past which the top has fallen (in (0, pi]).
   double max_tilt = 1.0;
-  Tolerances integrator;  ///< the adaptive integrator's settings (its progress too)
+  Tolerances integrator;  ///< the adaptive integrator's settings
   /// Which integrator runs the body (any but the splitting, through simulate.hpp's one
   /// dispatch); dopri5 by default, as the command line's `lifetime` has always run.
   Integrator method = Integrator::Dopri5;
@@ -60,7 +60,9 @@ struct Lifetime {
 Lifetime spin_decay(const Body& body, const InitialState& initial, const LifetimeOptions& options = {});
 
 /// The lifetime of `body` (with its damping) started in `initial`. Throws InvalidInput for a
-/// bad body, state or options; std::runtime_error if the integration fails.
-Lifetime lifetime(const Body& body, const InitialState& initial, const LifetimeOptions& options = {});
+/// bad body, state or options; std::runtime_error if the integration fails; what `progress`
+/// (the tilt scan's, progress.hpp) throws.
+Lifetime lifetime(const Body& body, const InitialState& initial, const LifetimeOptions& options = {},
+                  const Progress& progress = {});
 
 }  // namespace heavytop

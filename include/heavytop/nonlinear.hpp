@@ -18,6 +18,7 @@
 
 #include "heavytop/body.hpp"
 #include "heavytop/frames.hpp"
+#include "heavytop/progress.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop {
@@ -35,9 +36,6 @@ struct Tolerances {
   double atol = 1e-12;
   /// Largest number of attempted steps (accepted + rejected) before giving up, > 0.
   std::size_t max_steps = 100'000'000;
-  /// Called with the simulated time (s) after each output sample and every 64 steps between
-  /// samples, if set (a progress bar; a caller may throw from it to stop the run).
-  std::function<void(double)> progress;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a
   /// one-line "key: rule" message (key "rtol", "atol" or "max_steps").
@@ -95,7 +93,7 @@ ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState&
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
                               const std::vector<double>& times,
                               const Tolerances& options = {},
-                              NonlinearSummary* summary = nullptr);
+                              NonlinearSummary* summary = nullptr, const Progress& progress = {});
 
 /// The extremes of the tilt acos(k_zeta) (rad, angle of the spin axis from the upward vertical).
 struct TiltExtremes {
@@ -113,11 +111,11 @@ struct TiltExtremes {
 /// extrema are located on the dense output by a root of d(k_zeta)/dt, so they are as exact
 /// as the integration. Stops at the first point where the tilt exceeds `stop_above` (rad;
 /// not NaN; key "max_tilt"); then max_tilt is that point's tilt, a lower bound of the true
-/// maximum. Throws like simulate_nonlinear.
+/// maximum. Throws like simulate_nonlinear (and what `progress` throws).
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                            double stop_above = std::numeric_limits<double>::infinity(),
                            const Tolerances& options = {},
-                           NonlinearSummary* summary = nullptr);
+                           NonlinearSummary* summary = nullptr, const Progress& progress = {});
 
 /// rad, the largest tilt acos(k_zeta) over [0, horizon] (s), stopping early once it exceeds
 /// `stop_above` (rad; the result is then > stop_above). For stability sweeps.

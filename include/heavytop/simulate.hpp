@@ -88,7 +88,7 @@ Integrator resolve_integrator(Integrator asked, const Body& body, const Toleranc
 /// the crossing itself). `summary`, if set, receives the run's work (Dopri5 and Taylor).
 TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
                            double stop_above, const Tolerances& tolerances,
-                           NonlinearSummary* summary = nullptr);
+                           NonlinearSummary* summary = nullptr, const Progress& progress = {});
 
 /// Settings of simulate(); each applies to the models named.
 struct SimulateOptions {
@@ -96,8 +96,6 @@ struct SimulateOptions {
   Integrator integrator = Integrator::Auto;      ///< nonlinear
   Tolerances adaptive;                     ///< nonlinear with Dopri5, Taylor, Dop853, Auto
   SplittingOptions splitting;                    ///< nonlinear with Integrator::Splitting
-  /// Called with the simulated time (s) as the work proceeds, if set; may throw to stop it.
-  std::function<void(double)> progress;
 
   /// True if every setting is in range; else false with a one-line "key: rule" in `why`
   /// (key "rtol", "atol", "step", "order" or "max_steps").
@@ -136,7 +134,7 @@ struct ResolvedSimulate {
   Model model = Model::Nonlinear;
   double t_end = 10.0;      ///< s
   std::size_t samples = 0;  ///< at t_i = i t_end / (samples - 1)
-  SimulateOptions options;  ///< progress unset
+  SimulateOptions options;
 };
 
 /// The options of `request` for `body`, or InvalidInput(key, rule) for the first rule it breaks,
@@ -229,11 +227,12 @@ using TrajectorySink = std::function<void(const Trajectory&)>;
 /// simulate() at `grid`, streamed: `sink` gets the trajectory in pieces of at most `chunk`
 /// samples as they are computed, so memory stays flat in the number of samples. On a
 /// numerical failure the pieces already handed on stay valid and the summary says where.
-/// `adaptive`, if not null, receives the adaptive integrator's own summary.
+/// `adaptive`, if not null, receives the adaptive integrator's own summary; `progress` is called
+/// as the run proceeds (a throw from it stops the run and is its failure, as in simulate()).
 SimulationSummary simulate_streaming(Model model, const Body& body, const InitialState& initial,
                                      const SampleGrid& grid, const SimulateOptions& options,
                                      const TrajectorySink& sink, std::size_t chunk = 4096,
-                                     NonlinearSummary* adaptive = nullptr);
+                                     NonlinearSummary* adaptive = nullptr, const Progress& progress = {});
 
 /// The motion of `model` for `body` from `initial` (SPEC section 2 mapping) at `times` (s;
 /// finite, >= 0, non-decreasing). Columns theta, phi, theta_rate, phi_rate for every model;
@@ -244,8 +243,11 @@ SimulationSummary simulate_streaming(Model model, const Body& body, const Initia
 /// InvalidInput for bad input (the body, the state, the options; LagrangeExact needs A = B;
 /// times beyond longest_meaningful_time()); a numerical failure, including a value that is
 /// not finite (a linear model grown beyond a double), is reported in the summary
-/// (Termination::Failure, with the column and the time), not thrown.
+/// (Termination::Failure, with the column and the time), not thrown. `progress` (progress.hpp)
+/// is called as the run proceeds; what it throws stops the run, its message the failure's, the
+/// samples before it kept.
 Simulation simulate(Model model, const Body& body, const InitialState& initial,
-                    const std::vector<double>& times, const SimulateOptions& options = {});
+                    const std::vector<double>& times, const SimulateOptions& options = {},
+                    const Progress& progress = {});
 
 }  // namespace heavytop

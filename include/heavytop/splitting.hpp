@@ -22,6 +22,7 @@
 
 #include "heavytop/body.hpp"
 #include "heavytop/nonlinear.hpp"  // Drifts
+#include "heavytop/progress.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop {
@@ -36,9 +37,6 @@ struct SplittingOptions {
   /// Largest number of grid steps a run may take (> 0): refuses a step too small for the
   /// horizon rather than running for days.
   std::size_t max_steps = 1'000'000'000;
-  /// Called with the simulated time (s) after each sample and every few thousand steps, if
-  /// set (a progress bar; a caller may throw from it to stop the run).
-  std::function<void(double)> progress;
 
   /// True if every setting is in range; otherwise false, and `why` (if not null) receives a
   /// one-line "key: rule" message (key "step", "order" or "max_steps").
@@ -68,6 +66,6 @@ struct SplittingSummary : Drifts {
 /// Throws InvalidInput for a bad body, state or options.
 Trajectory simulate_splitting(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const SplittingOptions& options,
-                              SplittingSummary* summary = nullptr);
+                              SplittingSummary* summary = nullptr, const Progress& progress = {});
 
 }  // namespace heavytop

@@ -71,7 +71,8 @@ struct TaylorSummary {
 /// a step lost in the rounding of t, or a state that stops being finite.
 /// The tolerance is met per step componentwise: |error_i| <~ atol + rtol |x_i|.
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const Tolerances& options = {}, TaylorSummary* summary = nullptr);
+                           const Tolerances& options = {}, TaylorSummary* summary = nullptr,
+                           const Progress& progress = {});
 
 /// tilt_extremes() by the Taylor method: the tilt extrema are the roots of the series of
 /// d(k_zeta)/dt on each step, the threshold crossing (tilt = stop_above, rad) the root of the
@@ -83,6 +84,7 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 /// ("horizon", "max_tilt") and failures as simulate_taylor().
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above = std::numeric_limits<double>::infinity(),
-                                  const Tolerances& options = {}, TaylorSummary* summary = nullptr);
+                                  const Tolerances& options = {}, TaylorSummary* summary = nullptr,
+                                  const Progress& progress = {});
 
 }  // namespace heavytop

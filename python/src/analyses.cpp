@@ -57,11 +57,10 @@ py::object compare(const Body& body, double spin, double theta0, double phi0, do
   require_positive("t_end", t_end);
   require_count("samples", samples, 3, static_cast<long long>(kMaxComparisonSamples));
   validate_horizon(body, state, t_end, "t_end");
-  Tolerances options = tolerances(rtol, atol);
-  options.progress = poll_signals();
+  const Tolerances options = tolerances(rtol, atol);
   return from_json(without_gil([&] {
     return io::comparison_json(
-        compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options));
+        compare_models(body, state, sample_times(t_end, static_cast<std::size_t>(samples)), options, poll_signals()));
   }));
 }
 
@@ -75,8 +74,7 @@ py::object lifetime(const Body& body, double spin, double theta0, double phi0, d
   options.max_tilt = max_tilt;
   options.integrator = tolerances(rtol, atol);
   if (max_steps) options.integrator.max_steps = static_cast<std::size_t>(std::max(0LL, *max_steps));
-  options.integrator.progress = poll_signals();
-  return from_json(without_gil([&] { return io::lifetime_json(heavytop::lifetime(body, state, options)); }));
+  return from_json(without_gil([&] { return io::lifetime_json(heavytop::lifetime(body, state, options, poll_signals())); }));
 }
 
 }  // namespace

@@ -19,7 +19,7 @@ struct Interrupted {};
 /// briefly; call it with the GIL released.
 bool signalled();
 
-/// A progress callback for the core (SimulateOptions::progress, Tolerances::progress)
+/// A progress callback for a core run (heavytop::Progress, an argument of simulate, compare_models, lifetime)
 /// that polls Python's signals at most every 0.1 s and throws Interrupted on one.
 std::function<void(double)> poll_signals();
 

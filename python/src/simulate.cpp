@@ -67,11 +67,9 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
                               "auto, taylor, dop853, dopri5 (adaptive) or splitting"});
   }
   const std::optional<Model> model = resolved.model;
-  SimulateOptions& options = resolved.options;
-  options.progress = poll_signals();
-
   Simulation run = without_gil([&] {
-    return heavytop::simulate(*model, body, state, sample_times(resolved.t_end, resolved.samples), options);
+    return heavytop::simulate(*model, body, state, sample_times(resolved.t_end, resolved.samples), resolved.options,
+                              poll_signals());
   });
   Trajectory& tr = run.trajectory;
   const auto names = tr.column_names();

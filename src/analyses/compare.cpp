@@ -94,9 +94,9 @@ MotionFrequencies measure_frequencies(const Trajectory& tr) {
 }
 
 Comparison compare_models(const Body& body, const InitialState& state,
-                          const std::vector<double>& times, const Tolerances& options) {
+                          const std::vector<double>& times, const Tolerances& options, const Progress& progress) {
   Comparison c;
-  c.nonlinear = simulate_nonlinear(body, state, times, options, &c.summary);
+  c.nonlinear = simulate_nonlinear(body, state, times, options, &c.summary, progress);
   c.nonlinear_frequencies = measure_frequencies(c.nonlinear);
   for (LinearModelKind kind : kLinearModels) {
     const LinearModel model = linear_model(kind, body);

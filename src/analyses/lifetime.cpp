@@ -57,10 +57,11 @@ Lifetime spin_decay(const Body& body, const InitialState& initial, const Lifetim
   return life;
 }
 
-Lifetime lifetime(const Body& body, const InitialState& initial, const LifetimeOptions& options) {
+Lifetime lifetime(const Body& body, const InitialState& initial, const LifetimeOptions& options,
+                  const Progress& progress) {
   Lifetime life = spin_decay(body, initial, options);
   const TiltExtremes e = tilt_extremes(options.method, body, initial, life.horizon, options.max_tilt, options.integrator,
-                                        &life.summary);
+                                        &life.summary, progress);
   life.largest_tilt = e.max_tilt;
   if (e.exceeded) {
     life.fall_time = e.t_end;

@@ -187,32 +187,35 @@ inline Eigen::Quaterniond unit_quaternion(const Eigen::Matrix3d& attitude) {
 // The samples of a run, streamed: how many, the time of each (s; finite, >= 0, non-decreasing),
 // and where the trajectory goes, `chunk` samples at a time (then the rest), so that memory
 // stays flat in the number of samples. `flush` may take the columns' contents (move them).
+// `progress` is the run's (progress.hpp): the one sample loop calls it.
 struct SampleStream {
   std::size_t count = 0;
   std::function<double(std::size_t)> time;
   std::size_t chunk = static_cast<std::size_t>(-1);
   std::function<void(Trajectory&)> flush;
+  Progress progress;
 
   // s, the last sample's time (0 without samples): the run's horizon.
   double horizon() const { return count == 0 ? 0.0 : time(count - 1); }
 };
 
 // A stream over `times` that gathers every sample into `out`.
-inline SampleStream gather(const std::vector<double>& times, Trajectory& out) {
+inline SampleStream gather(const std::vector<double>& times, Trajectory& out, const Progress& progress = {}) {
   return {times.size(), [&times](std::size_t i) { return times[i]; }, static_cast<std::size_t>(-1),
           [&out](Trajectory& part) {
             if (out.size() == 0) out = std::move(part);
             else out.append(part);
-          }};
+          },
+          progress};
 }
 
 // simulate_*(times) from its streaming twin: `stream(samples)` with every sample at `times`
 // (validated: key "times") gathered into one trajectory.
 template <class Stream>
-Trajectory gathered(const std::vector<double>& times, const Stream& stream) {
+Trajectory gathered(const std::vector<double>& times, const Progress& progress, const Stream& stream) {
   validate_times(times);
   Trajectory out;
-  stream(gather(times, out));
+  stream(gather(times, out, progress));
   return out;
 }
 
@@ -261,7 +264,7 @@ inline constexpr std::size_t kStepsPerProgress = 64;
 // Steps a dense-output integrator (time(), step()) until it has passed t, calling `progress`
 // every kStepsPerProgress steps too, so that a caller can stop a long run between samples.
 template <class Integrator>
-void advance_to(Integrator& integrator, double t, const std::function<void(double)>& progress) {
+void advance_to(Integrator& integrator, double t, const Progress& progress) {
   for (std::size_t steps = 1; integrator.time() < t; ++steps) {
     integrator.step();
     if (progress && steps % kStepsPerProgress == 0) progress(std::min(t, integrator.time()));

@@ -39,7 +39,7 @@ concept DenseStepper = requires(S& stepper, const S& const_stepper, double t, ty
 // Brings `stepper` to where interpolate(t, .) is valid: its own advance_to if it has one, else
 // steps until it has passed t, calling `progress` every kStepsPerProgress steps.
 template <DenseStepper S>
-void advance_stepper(S& stepper, double t, const std::function<void(double)>& progress) {
+void advance_stepper(S& stepper, double t, const Progress& progress) {
   if constexpr (requires { stepper.advance_to(t, progress); }) stepper.advance_to(t, progress);
   else advance_to(stepper, t, progress);
 }
@@ -50,7 +50,7 @@ void advance_stepper(S& stepper, double t, const std::function<void(double)>& pr
 // non-decreasing, so the stepper only ever moves forward.
 template <DenseStepper S, class Observer>
 void for_each_sample(S& stepper, std::size_t count, const std::function<double(std::size_t)>& time,
-                     const std::function<void(double)>& progress, Observer&& observer) {
+                     const Progress& progress, Observer&& observer) {
   typename S::State x{};
   for (std::size_t i = 0; i < count; ++i) {
     const double t = time(i);
@@ -139,11 +139,10 @@ class SampleWriter {
 // columns, read(x) saying what the stepper's state x is (SampleValues); t = 0 from rb0 itself.
 template <DenseStepper S, class Read>
 void write_samples(S& stepper, const Body& body, const RigidBodyState& rb0, const ConservedQuantities& initial,
-                   bool damped, const SampleStream& samples, const std::function<void(double)>& progress,
-                   const Read& read) {
+                   bool damped, const SampleStream& samples, const Read& read) {
   SampleWriter writer(body, samples, initial, damped);
   const SampleValues start = initial_sample(rb0, initial);
-  for_each_sample(stepper, samples.count, samples.time, progress,
+  for_each_sample(stepper, samples.count, samples.time, samples.progress,
                   [&](std::size_t i, double t, const typename S::State* x) {
                     writer.write(i, t, x ? read(*x) : start);
                   });

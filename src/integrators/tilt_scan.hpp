@@ -52,10 +52,10 @@ inline TiltRecord start_tilt_scan(double tilt0, double stop_above) {
 // The one loop: steps `stepper` (step(), time(), previous_time(), interpolate(t, x)) over
 // [0, horizon] from `record` (start_tilt_scan's), each step's events found by
 // events(stepper, t0, t1, record) (the crossing's time, or -1); spin(x) is w.k (rad/s) for
-// spin_at_end. `progress`, if set, gets the time every kStepsPerProgress steps.
+// spin_at_end. `progress`, if set, gets the time every kStepsPerProgress steps and at the end.
 template <class Stepper, class Events, class Spin>
 TiltExtremes scan_tilt_extremes(Stepper& stepper, double horizon, TiltRecord record, Events&& events, Spin spin,
-                                const std::function<void(double)>& progress = {}) {
+                                const Progress& progress = {}) {
   typename Stepper::State y;
   for (std::size_t steps = 1; stepper.time() < horizon; ++steps) {
     stepper.step();
@@ -67,12 +67,14 @@ TiltExtremes scan_tilt_extremes(Stepper& stepper, double horizon, TiltRecord rec
       record.e.exceeded = true;
       record.e.t_end = crossing;
       record.e.spin_at_end = spin(y);
+      if (progress) progress(crossing);
       return record.e;
     }
   }
   record.e.t_end = horizon;
   stepper.interpolate(std::min(stepper.time(), horizon), y);
   record.e.spin_at_end = spin(y);
+  if (progress) progress(horizon);
   return record.e;
 }
 

@@ -232,20 +232,20 @@ struct TiltOf {
 // nonlinear.cpp's scan_tilt on DOP853's dense output: extrema at the roots of d(k_zeta)/dt,
 // the crossing of stop_above located by TOMS 748.
 TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
-                       const Tolerances& options) {
+                       const Tolerances& options, const Progress& progress) {
   const TiltRecord start = start_tilt_scan(TiltOf(x0).tilt(), stop_above);
   if (start.e.exceeded || horizon == 0.0) return start.e;
   Dop853 integrator(body, x0, horizon, options, nullptr);
   auto tilt = [](const State& x) { return TiltOf(x).tilt(); };
   auto rate = [](const State& x) { return TiltOf(x).rate(x); };
   return scan_tilt_extremes(integrator, horizon, start, DenseOutputEvents<State, decltype(tilt), decltype(rate)>(x0, tilt, rate),
-                            [](const State& x) { return x[6]; });
+                            [](const State& x) { return x[6]; }, progress);
 }
 
 }  // namespace
 
 TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial, double horizon, double stop_above,
-                                  const Tolerances& options) {
+                                  const Tolerances& options, const Progress& progress) {
   validate(body);
   refuse_general(body, "dop853 (use dopri5 or auto)");
   detail::refuse_damping(body, "dop853");
@@ -253,7 +253,7 @@ TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial,
   validate(options);
   if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("horizon", "must be a finite number >= 0");
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
-  return scan_tilt(body, to_vector(initial_rigid_body_state(initial)), horizon, stop_above, options);
+  return scan_tilt(body, to_vector(initial_rigid_body_state(initial)), horizon, stop_above, options, progress);
 }
 
 void detail::stream_dop853(const Body& body, const InitialState& initial, const SampleStream& samples,
@@ -266,7 +266,7 @@ void detail::stream_dop853(const Body& body, const InitialState& initial, const 
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
   const double horizon = samples.horizon();
   Dop853 integrator(body, to_vector(rb0), horizon, options, summary);
-  write_samples(integrator, body, rb0, conserved_quantities(body, rb0), false, samples, options.progress,
+  write_samples(integrator, body, rb0, conserved_quantities(body, rb0), false, samples,
                 [&body](const State& x) {
                   const RigidBodyState rb = from_vector(x);
                   return sample_of(rb, conserved_quantities(body, rb));
@@ -274,8 +274,8 @@ void detail::stream_dop853(const Body& body, const InitialState& initial, const 
 }
 
 Trajectory simulate_dop853(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const Tolerances& options, NonlinearSummary* summary) {
-  return gathered(times, [&](const SampleStream& samples) {
+                           const Tolerances& options, NonlinearSummary* summary, const Progress& progress) {
+  return gathered(times, progress, [&](const SampleStream& samples) {
     detail::stream_dop853(body, initial, samples, options, summary);
   });
 }

@@ -119,12 +119,12 @@ using GeneralIntegrator = Dopri5Driver<GeneralVariables>;
 
 std::vector<RigidBodyState> integrate_general_body(const Body& body, const RigidBodyState& x0,
                                                    const std::vector<double>& times, const Tolerances& options,
-                                                   NonlinearSummary* summary) {
+                                                   NonlinearSummary* summary, const Progress& progress) {
   check_general(body, options);
   validate_times(times);
   std::vector<RigidBodyState> out(times.size());
   GeneralIntegrator integrator(body, x0, times.empty() ? 0.0 : times.back(), options, summary);
-  for_each_sample(integrator, times.size(), [&times](std::size_t i) { return times[i]; }, options.progress,
+  for_each_sample(integrator, times.size(), [&times](std::size_t i) { return times[i]; }, progress,
                   [&](std::size_t i, double, const State* x) { out[i] = x ? from_vector(*x) : x0; });
   return out;
 }
@@ -135,7 +135,7 @@ void detail::stream_general(const Body& body, const InitialState& initial, const
   validate(initial);
   const RigidBodyState x0 = initial_rigid_body_state(initial);
   GeneralIntegrator integrator(body, x0, samples.horizon(), options, summary);
-  write_samples(integrator, body, x0, general_conserved_quantities(body, x0), false, samples, options.progress,
+  write_samples(integrator, body, x0, general_conserved_quantities(body, x0), false, samples,
                 [&body](const State& x) {
                   const RigidBodyState rb = from_vector(x);
                   return sample_of(rb, general_conserved_quantities(body, rb));
@@ -143,8 +143,8 @@ void detail::stream_general(const Body& body, const InitialState& initial, const
 }
 
 Trajectory simulate_general_body(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                                 const Tolerances& options, NonlinearSummary* summary) {
-  return gathered(times, [&](const SampleStream& samples) {
+                                 const Tolerances& options, NonlinearSummary* summary, const Progress& progress) {
+  return gathered(times, progress, [&](const SampleStream& samples) {
     detail::stream_general(body, initial, samples, options, summary);
   });
 }

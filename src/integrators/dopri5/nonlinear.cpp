@@ -91,7 +91,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
   const double horizon = samples.horizon();
   Integrator<Symmetric, Damped> integrator(body, rb0, horizon, options, summary);
   // Angles from p itself (k' = R (w x e3) as in angles_of()), E, L_zeta, C w3 from the body.
-  write_samples(integrator, body, rb0, conserved_quantities(body, rb0), Damped, samples, options.progress,
+  write_samples(integrator, body, rb0, conserved_quantities(body, rb0), Damped, samples,
                 [&body](const State& x) {
                   SampleValues v{angles_of(x), to_rigid_body(x), {}, {}};
                   v.conserved = conserved_quantities(body, v.body);
@@ -102,7 +102,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
 
 template <bool Symmetric, bool Damped>
 TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
-                       const Tolerances& options, NonlinearSummary* summary) {
+                       const Tolerances& options, NonlinearSummary* summary, const Progress& progress) {
   using State = StateOf<Damped>;
   const State x0 = to_state<State>(rb0);
   if (summary) *summary = NonlinearSummary{};
@@ -114,7 +114,7 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
   auto tilt = [](const State& x) { return tilt_of(x); };
   auto rate = [](const State& x) { return tilt_cos_rate(x); };
   return scan_tilt_extremes(integrator, horizon, start, DenseOutputEvents<State, decltype(tilt), decltype(rate)>(x0, tilt, rate),
-                            [](const State& x) { return x[kW3]; }, options.progress);
+                            [](const State& x) { return x[kW3]; }, progress);
 }
 
 }  // namespace
@@ -139,8 +139,8 @@ ConservedQuantities conserved_quantities(const Body& body, const RigidBodyState&
 
 Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const Tolerances& options,
-                              NonlinearSummary* summary) {
-  return gathered(times, [&](const SampleStream& samples) {
+                              NonlinearSummary* summary, const Progress& progress) {
+  return gathered(times, progress, [&](const SampleStream& samples) {
     detail::stream_nonlinear(body, initial, samples, options, summary);
   });
 }
@@ -166,7 +166,7 @@ void detail::stream_nonlinear(const Body& body, const InitialState& initial, con
 
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                            double stop_above, const Tolerances& options,
-                           NonlinearSummary* summary) {
+                           NonlinearSummary* summary, const Progress& progress) {
   validate(body);
   refuse_general(body, "the tilt scan (sweep, lifetime, the wander)");
   validate(initial);
@@ -177,10 +177,10 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
   const bool damped = !body.damping.conservative();
   if (body.A == body.B)
-    return damped ? scan_tilt<true, true>(body, rb0, horizon, stop_above, options, summary)
-                  : scan_tilt<true, false>(body, rb0, horizon, stop_above, options, summary);
-  return damped ? scan_tilt<false, true>(body, rb0, horizon, stop_above, options, summary)
-                : scan_tilt<false, false>(body, rb0, horizon, stop_above, options, summary);
+    return damped ? scan_tilt<true, true>(body, rb0, horizon, stop_above, options, summary, progress)
+                  : scan_tilt<true, false>(body, rb0, horizon, stop_above, options, summary, progress);
+  return damped ? scan_tilt<false, true>(body, rb0, horizon, stop_above, options, summary, progress)
+                : scan_tilt<false, false>(body, rb0, horizon, stop_above, options, summary, progress);
 }
 
 double max_tilt(const Body& body, const InitialState& initial, double horizon, double stop_above,

@@ -181,7 +181,7 @@ class GridStepper {
     if (monitor_) monitor_.note_step(time(), integrals(body_, x_));
   }
 
-  void advance_to(double t, const std::function<void(double)>& progress) {
+  void advance_to(double t, const Progress& progress) {
     const auto target = static_cast<std::size_t>(std::floor(t / h_ * (1.0 + 4e-16)));
     while (n_ < target) {
       step();
@@ -233,8 +233,8 @@ std::string SplittingSummary::BriefReport() const {
 
 Trajectory simulate_splitting(const Body& body, const InitialState& initial,
                               const std::vector<double>& times, const SplittingOptions& options,
-                              SplittingSummary* summary) {
-  return gathered(times, [&](const SampleStream& samples) {
+                              SplittingSummary* summary, const Progress& progress) {
+  return gathered(times, progress, [&](const SampleStream& samples) {
     detail::stream_splitting(body, initial, samples, options, summary);
   });
 }
@@ -254,7 +254,7 @@ void detail::stream_splitting(const Body& body, const InitialState& initial, con
 
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
   GridStepper stepper(body, rb0, options, summary);
-  write_samples(stepper, body, rb0, conserved_quantities(body, rb0), false, samples, options.progress,
+  write_samples(stepper, body, rb0, conserved_quantities(body, rb0), false, samples,
                 [&body](const State& y) {
                   const RigidBodyState rb = to_rigid_body(body, y);
                   return sample_of(rb, conserved_quantities(body, rb));

@@ -34,7 +34,7 @@ void simulate(const Body& body, const RigidBodyState& rb0, const SampleStream& s
   using State = typename TaylorIntegrator<System>::State;
   const double horizon = samples.horizon();
   TaylorIntegrator<System> integrator(body, System(body), System::state_of(rb0), horizon, options, summary);
-  write_samples(integrator, body, rb0, System::conserved(body, rb0), System::kDamped, samples, options.progress,
+  write_samples(integrator, body, rb0, System::conserved(body, rb0), System::kDamped, samples,
                 [&body](const State& x) {
                   const RigidBodyState rb = System::rigid_body(x);
                   SampleValues v = sample_of(rb, System::conserved(body, rb));
@@ -125,7 +125,7 @@ class SeriesEvents {
 
 template <class System>
 TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horizon, double stop_above,
-                       const Tolerances& options, TaylorSummary* summary) {
+                       const Tolerances& options, TaylorSummary* summary, const Progress& progress) {
   if (summary) *summary = TaylorSummary{};
   const auto x0 = System::state_of(rb0);
   const TiltRecord start = start_tilt_scan(tilt_of(x0), stop_above);
@@ -137,7 +137,7 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
   return scan_tilt_extremes(integrator, horizon, start, SeriesEvents<System>(stop_above), [](const auto& x) {
     if constexpr (System::kDamped) return x[6];
     return 0.0;
-  });
+  }, progress);
 }
 
 // The set of variables for a body; a damped general body is refused (SPEC section 11 is
@@ -190,14 +190,15 @@ void detail::stream_taylor(const Body& body, const InitialState& initial, const 
 }
 
 Trajectory simulate_taylor(const Body& body, const InitialState& initial, const std::vector<double>& times,
-                           const Tolerances& options, TaylorSummary* summary) {
-  return gathered(times, [&](const SampleStream& samples) {
+                           const Tolerances& options, TaylorSummary* summary, const Progress& progress) {
+  return gathered(times, progress, [&](const SampleStream& samples) {
     detail::stream_taylor(body, initial, samples, options, summary);
   });
 }
 
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
-                                  double stop_above, const Tolerances& options, TaylorSummary* summary) {
+                                  double stop_above, const Tolerances& options, TaylorSummary* summary,
+                                  const Progress& progress) {
   validate(body);
   validate(initial);
   validate(options);
@@ -205,11 +206,11 @@ TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial,
   if (std::isnan(stop_above)) throw InvalidInput("max_tilt", "must be a number");
   const RigidBodyState rb0 = initial_rigid_body_state(initial);
   switch (taylor_set(body)) {
-    case Set::SpinFactored: return scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary);
-    case Set::Plain: return scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary);
-    case Set::General: return scan_tilt<General>(body, rb0, horizon, stop_above, options, summary);
-    case Set::DampedSpinFactored: return scan_tilt<DampedSpinFactored>(body, rb0, horizon, stop_above, options, summary);
-    case Set::DampedPlain: return scan_tilt<DampedPlain>(body, rb0, horizon, stop_above, options, summary);
+    case Set::SpinFactored: return scan_tilt<SpinFactored>(body, rb0, horizon, stop_above, options, summary, progress);
+    case Set::Plain: return scan_tilt<Plain>(body, rb0, horizon, stop_above, options, summary, progress);
+    case Set::General: return scan_tilt<General>(body, rb0, horizon, stop_above, options, summary, progress);
+    case Set::DampedSpinFactored: return scan_tilt<DampedSpinFactored>(body, rb0, horizon, stop_above, options, summary, progress);
+    case Set::DampedPlain: return scan_tilt<DampedPlain>(body, rb0, horizon, stop_above, options, summary, progress);
   }
   return {};
 }
