@@ -308,7 +308,8 @@ std::string view_html(const Comparison& c, const EquivalentEllipsoid& shape, con
   std::string drawn;
   if (parts.empty()) {
     drawn = "The body is drawn as the uniform ellipsoid with its mass and moments (centre of mass at R on the spin axis)" +
-            (shape.note.empty() ? std::string() : fmt::format(" (not to scale: {})", html_escape(shape.note))) + ".";
+            (shape.note.empty() ? std::string() : fmt::format(" (not to scale: {})", html_escape(shape.note))) +
+            ", on a spindle through O (the spindle and the point are drawn only to show the axis).";
   } else {
     std::string names;
     for (std::size_t i = 0; i < parts.size(); ++i) {
