@@ -236,6 +236,39 @@ TEST_P(Conformance, TiltScanReportsProgressAndStopsOnAThrow) {
   EXPECT_EQ(calls, 1);
 }
 
+// One stop contract for every tilt scan: at the first crossing of stop_above, t_end = t_max is
+// the crossing (inside the full scan's first rise past it), max_tilt the tilt there (stop_above
+// to 1e-9 rad) and spin_at_end w.k there (an independent route: simulate()'s C w3 / C at t_end).
+TEST_P(Conformance, TiltScanStopsAtTheCrossing) {
+  if (splitting()) GTEST_SKIP() << "the splitting has no tilt scan (refused: no error control)";
+  const Body& body = GetParam().body;
+  const InitialState& start = GetParam().start;
+  const Tolerances tolerances = options().adaptive;
+  const double horizon = 1.0, inf = std::numeric_limits<double>::infinity();
+  TiltExtremes full;
+  try {
+    full = tilt_extremes(GetParam().integrator, body, start, horizon, inf, tolerances);
+  } catch (const InvalidInput& e) {
+    GTEST_SKIP() << "this integrator scans no such body: " << e.what();
+  }
+  const Simulation first = run({0.0, 1e-3});
+  ASSERT_TRUE(first.summary.ok()) << first.summary.message;
+  const double tilt0 = named(first.trajectory, "tilt").front();
+  ASSERT_GT(full.max_tilt, tilt0 + 1e-3) << "the tilt must rise for the test to mean something";
+  const double stop = 0.5 * (tilt0 + full.max_tilt);
+  const TiltExtremes e = tilt_extremes(GetParam().integrator, body, start, horizon, stop, tolerances);
+  ASSERT_TRUE(e.exceeded);
+  EXPECT_GT(e.t_end, 0.0);
+  EXPECT_LE(e.t_end, full.t_max);
+  EXPECT_EQ(e.t_max, e.t_end);
+  EXPECT_NEAR(e.max_tilt, stop, 1e-9);
+  EXPECT_EQ(e.min_tilt, std::min(tilt0, e.min_tilt));
+  if (is_general(body)) return;  // its axial_momentum is (I w).e3, not C w3
+  const Simulation s = run({0.0, e.t_end});
+  ASSERT_TRUE(s.summary.ok()) << s.summary.message;
+  EXPECT_NEAR(e.spin_at_end, named(s.trajectory, "axial_momentum").back() / body.C, 1e-6 * std::abs(start.spin));
+}
+
 // The summary's counts add up, by each integrator's own rule.
 TEST_P(Conformance, SummaryCountsAddUp) {
   const Simulation s = run(sample_times(1.0, 51));

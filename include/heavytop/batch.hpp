@@ -54,7 +54,7 @@ bool batchable(const Body& body) noexcept;
 /// taylor_tilt_extremes(bodies[i], initials[i], horizon, stop_above, options) into out[i] for
 /// every i, the bodies integrated batch_lanes(isa) at a time with best_batch_isa() (or `isa`).
 /// Each out[i] equals the unbatched call's result bit for bit (min_tilt, t_min, max_tilt,
-/// t_max, t_end, exceeded; spin_at_end is 0, as there). Units: horizon s (finite, >= 0), stop_above
+/// t_max, t_end, exceeded; spin_at_end is left 0). Units: horizon s (finite, >= 0), stop_above
 /// rad (not NaN; the tilt from the upward vertical). Throws InvalidInput with the unbatched
 /// call's keys ("body.*", "motion.*", "rtol", "atol", "max_steps", "horizon", "max_tilt"),
 /// "integrator" for a body that is not batchable(), "bodies" when the three spans' sizes

@@ -26,8 +26,8 @@ Trajectory simulate_dop853(const Body& body, const InitialState& initial, const 
 
 /// tilt_extremes() (nonlinear.hpp) by DOP853: the tilt's extrema over [0, horizon] (s) located
 /// on the dense output at the roots of d(k_zeta)/dt, stopping at the first crossing of
-/// `stop_above` (rad; then t_end is the crossing and max_tilt the tilt of the first located point
-/// beyond it). For sweeps with --integrator dop853. Same keys ("horizon", "max_tilt") and
+/// `stop_above` (rad; then t_end = t_max is the crossing and max_tilt the tilt there, as in
+/// tilt_extremes()). For sweeps with --integrator dop853. Same keys ("horizon", "max_tilt") and
 /// failures as simulate_dop853().
 TiltExtremes dop853_tilt_extremes(const Body& body, const InitialState& initial, double horizon, double stop_above,
                                   const Tolerances& options = {}, const Progress& progress = {});

@@ -99,10 +99,10 @@ Trajectory simulate_nonlinear(const Body& body, const InitialState& initial,
 struct TiltExtremes {
   double min_tilt = 0.0;   ///< rad, smallest tilt seen
   double t_min = 0.0;      ///< s, when
-  double max_tilt = 0.0;   ///< rad, largest tilt seen
-  double t_max = 0.0;      ///< s, when
+  double max_tilt = 0.0;   ///< rad, largest tilt seen (at a stop: the tilt at the crossing)
+  double t_max = 0.0;      ///< s, when (at a stop: t_end)
   double t_end = 0.0;      ///< s, end of the scan: the horizon, or the first time the tilt
-                           ///< passed stop_above (located on the dense output)
+                           ///< passed stop_above (located inside its step)
   bool exceeded = false;   ///< true if the scan stopped early because max_tilt > stop_above
   double spin_at_end = 0.0;  ///< rad/s, w.k at t_end (the integrated spin, damped or not)
 };
@@ -110,8 +110,10 @@ struct TiltExtremes {
 /// The extremes of the tilt over [0, horizon] (s, finite, >= 0; key "horizon"). Interior
 /// extrema are located on the dense output by a root of d(k_zeta)/dt, so they are as exact
 /// as the integration. Stops at the first point where the tilt exceeds `stop_above` (rad;
-/// not NaN; key "max_tilt"); then max_tilt is that point's tilt, a lower bound of the true
-/// maximum. Throws like simulate_nonlinear (and what `progress` throws).
+/// not NaN; key "max_tilt"), located inside its step by TOMS 748: then t_end = t_max is that
+/// crossing and max_tilt the tilt there (stop_above to the root's tolerance), a lower bound of
+/// the largest tilt the motion would reach. Throws like simulate_nonlinear (and what `progress`
+/// throws).
 TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                            double stop_above = std::numeric_limits<double>::infinity(),
                            const Tolerances& options = {},

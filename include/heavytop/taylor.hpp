@@ -78,10 +78,9 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 /// d(k_zeta)/dt on each step, the threshold crossing (tilt = stop_above, rad) the root of the
 /// series of k_zeta - cos(stop_above); both found by TOMS 748 on the polynomial, in a step
 /// split into 8 pieces to isolate them (two roots in one piece of 1/8 step would be missed).
-/// Unlike tilt_extremes(), when the scan stops early t_end and max_tilt are the crossing
-/// itself (max_tilt == stop_above to rounding), and spin_at_end is set for a damped body only
-/// (0 for the conservative one, whose batched twin in batch.hpp leaves it so). Same keys
-/// ("horizon", "max_tilt") and failures as simulate_taylor().
+/// The same contract as tilt_extremes(): when the scan stops early, t_end, t_max and max_tilt
+/// are the crossing's (max_tilt == stop_above to rounding). Same keys ("horizon", "max_tilt")
+/// and failures as simulate_taylor().
 TiltExtremes taylor_tilt_extremes(const Body& body, const InitialState& initial, double horizon,
                                   double stop_above = std::numeric_limits<double>::infinity(),
                                   const Tolerances& options = {}, TaylorSummary* summary = nullptr,

@@ -11,10 +11,8 @@
 // them as roots of the step's own series (taylor.cpp's SeriesEvents). Either notes what it
 // finds through `note` and returns the crossing's time, or -1 if the step has none.
 //
-// What is noted at a crossing still differs by capability: the dense output notes the first
-// point it sees past stop_above (an extremum or the step's end; max_tilt is then that point's
-// tilt, > stop_above), the series notes the crossing itself (max_tilt = stop_above to the
-// root's tolerance). Making them one changes lifetime's largest_tilt in the recorded runs.
+// At a crossing both note the crossing itself: max_tilt and t_max are the tilt there (stop_above
+// to the root's tolerance) and its time, which is t_end; spin_at_end is w.k there.
 
 #include <algorithm>
 #include <cmath>
@@ -40,12 +38,14 @@ struct TiltRecord {
   }
 };
 
-// The scan's start: the tilt at t = 0, and the scan's result already if it is over there
-// (the start past stop_above, or no horizon): then no stepper need be built.
-inline TiltRecord start_tilt_scan(double tilt0, double stop_above) {
+// The scan's start: the tilt (rad) and the spin w.k (rad/s) at t = 0, and the scan's result
+// already if it is over there (the start past stop_above, or no horizon): then no stepper need
+// be built.
+inline TiltRecord start_tilt_scan(double tilt0, double spin0, double stop_above) {
   TiltRecord r{{}, stop_above};
   r.e.min_tilt = r.e.max_tilt = tilt0;
   r.e.exceeded = tilt0 > stop_above;
+  r.e.spin_at_end = spin0;
   return r;
 }
 
@@ -104,14 +104,27 @@ class DenseOutputEvents {
           [width](double a, double b) { return std::abs(b - a) <= 1e-12 * width; }, iterations);
       const double tr = 0.5 * (bracket.first + bracket.second);
       stepper.interpolate(tr, y_);
-      if (record.note(tr, tilt_(y_))) return crossing(stepper, t0, tr, record.stop_above);
+      const double tilt_r = tilt_(y_);
+      if (tilt_r > record.stop_above) return stop_at(stepper, t0, tr, record);
+      record.note(tr, tilt_r);
     }
-    if (record.note(t1, tilt_(x_))) return crossing(stepper, t0, t1, record.stop_above);
+    if (tilt_(x_) > record.stop_above) return stop_at(stepper, t0, t1, record);
+    record.note(t1, tilt_(x_));
     rate_old_ = rate_new;
     return -1.0;
   }
 
  private:
+  // The scan's end in [t0, t_hi], past stop_above at t_hi: the crossing, noted as the series'
+  // scan notes its own.
+  template <class Stepper>
+  double stop_at(Stepper& stepper, double t0, double t_hi, TiltRecord& record) {
+    const double t_cross = crossing(stepper, t0, t_hi, record.stop_above);
+    stepper.interpolate(t_cross, y_);
+    record.note(t_cross, tilt_(y_));
+    return t_cross;
+  }
+
   // The first time in [t0, t_hi] the tilt passes stop_above (it is below at t0).
   template <class Stepper>
   double crossing(Stepper& stepper, double t0, double t_hi, double stop_above) {

@@ -233,7 +233,7 @@ struct TiltOf {
 // the crossing of stop_above located by TOMS 748.
 TiltExtremes scan_tilt(const Body& body, const State& x0, double horizon, double stop_above,
                        const Tolerances& options, const Progress& progress) {
-  const TiltRecord start = start_tilt_scan(TiltOf(x0).tilt(), stop_above);
+  const TiltRecord start = start_tilt_scan(TiltOf(x0).tilt(), x0[6], stop_above);
   if (start.e.exceeded || horizon == 0.0) return start.e;
   Dop853 integrator(body, x0, horizon, options, nullptr);
   auto tilt = [](const State& x) { return TiltOf(x).tilt(); };

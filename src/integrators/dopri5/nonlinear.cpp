@@ -1,5 +1,6 @@
 #include "heavytop/nonlinear.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -106,8 +107,7 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
   using State = StateOf<Damped>;
   const State x0 = to_state<State>(rb0);
   if (summary) *summary = NonlinearSummary{};
-  TiltRecord start = start_tilt_scan(tilt_of(x0), stop_above);
-  start.e.spin_at_end = x0[kW3];  // w.k at t = 0, where the scan ends when it is past stop_above already
+  const TiltRecord start = start_tilt_scan(tilt_of(x0), x0[kW3], stop_above);
   if (start.e.exceeded || horizon == 0.0) return start.e;
 
   Integrator<Symmetric, Damped> integrator(body, rb0, horizon, options, summary);
@@ -185,7 +185,10 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
 
 double max_tilt(const Body& body, const InitialState& initial, double horizon, double stop_above,
                 const Tolerances& options) {
-  return tilt_extremes(body, initial, horizon, stop_above, options).max_tilt;
+  const TiltExtremes e = tilt_extremes(body, initial, horizon, stop_above, options);
+  // Past the threshold the tilt was seen above it: the largest tilt is beyond stop_above, even
+  // where the crossing's own tilt rounds to it.
+  return e.exceeded ? std::max(e.max_tilt, std::nextafter(stop_above, HUGE_VAL)) : e.max_tilt;
 }
 
 }  // namespace heavytop

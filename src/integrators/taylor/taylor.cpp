@@ -128,16 +128,13 @@ TiltExtremes scan_tilt(const Body& body, const RigidBodyState& rb0, double horiz
                        const Tolerances& options, TaylorSummary* summary, const Progress& progress) {
   if (summary) *summary = TaylorSummary{};
   const auto x0 = System::state_of(rb0);
-  const TiltRecord start = start_tilt_scan(tilt_of(x0), stop_above);
+  const TiltRecord start = start_tilt_scan(tilt_of(x0), x0[6], stop_above);
   if (start.e.exceeded || horizon == 0.0) return start.e;
 
   TaylorIntegrator<System> integrator(body, System(body), x0, horizon, options, summary);
-  // spin_at_end: the integrated spin of a damped body; 0 for the conservative sets (and for the
-  // batch, which is bit-identical to this scan).
-  return scan_tilt_extremes(integrator, horizon, start, SeriesEvents<System>(stop_above), [](const auto& x) {
-    if constexpr (System::kDamped) return x[6];
-    return 0.0;
-  }, progress);
+  // spin_at_end: w.k = w3, slot 6 of every set (constant in the conservative symmetric one).
+  return scan_tilt_extremes(integrator, horizon, start, SeriesEvents<System>(stop_above),
+                            [](const auto& x) { return x[6]; }, progress);
 }
 
 // The set of variables for a body; a damped general body is refused (SPEC section 11 is
