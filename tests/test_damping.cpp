@@ -338,7 +338,7 @@ TEST(DampedNonlinear, StrongDragHoldsTheStepAtTheStabilityBoundaryAndAHopelessRu
   EXPECT_GT(double(summary.steps), 0.95 * boundary_steps);
   EXPECT_LT(double(summary.steps), 1.05 * boundary_steps);
   // With fewer steps allowed than half of that: stopped at a hundredth of max_steps, saying why.
-  NonlinearOptions few;
+  Tolerances few;
   few.max_steps = std::size_t(0.4 * boundary_steps);
   try {
     simulate_nonlinear(b, s, sample_times(t_end, 11), few);
@@ -348,7 +348,7 @@ TEST(DampedNonlinear, StrongDragHoldsTheStepAtTheStabilityBoundaryAndAHopelessRu
     EXPECT_NE(std::string(e.what()).find("after " + std::to_string(few.max_steps / 100) + " steps"), std::string::npos) << e.what();
   }
   // And a run that can finish within max_steps is not stopped.
-  NonlinearOptions enough;
+  Tolerances enough;
   enough.max_steps = std::size_t(1.5 * boundary_steps);
   EXPECT_NO_THROW(simulate_nonlinear(b, s, sample_times(t_end, 11), enough));
 }
