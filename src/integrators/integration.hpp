@@ -199,8 +199,8 @@ struct SampleStream {
   double horizon() const { return count == 0 ? 0.0 : time(count - 1); }
 };
 
-// A stream over `times` that gathers every sample into `out`.
-inline SampleStream gather(const std::vector<double>& times, Trajectory& out, const Progress& progress = {}) {
+// A stream over `times` that gathers every sample into `out`, with the run's `progress`.
+inline SampleStream gather(const std::vector<double>& times, Trajectory& out, const Progress& progress) {
   return {times.size(), [&times](std::size_t i) { return times[i]; }, static_cast<std::size_t>(-1),
           [&out](Trajectory& part) {
             if (out.size() == 0) out = std::move(part);

@@ -26,15 +26,14 @@
 
 namespace heavytop::detail {
 
-// The extremes so far: note(t, tilt) keeps the smallest and largest tilt and their times and
-// says whether `tilt` is past stop_above.
+// The extremes so far: note(t, tilt) keeps the smallest and largest tilt and their times; the
+// events compare a tilt with stop_above themselves, before they note it.
 struct TiltRecord {
   TiltExtremes e;
   double stop_above;
-  bool note(double t, double tilt) {
+  void note(double t, double tilt) {
     if (tilt < e.min_tilt) e.min_tilt = tilt, e.t_min = t;
     if (tilt > e.max_tilt) e.max_tilt = tilt, e.t_max = t;
-    return tilt > stop_above;
   }
 };
 
@@ -115,22 +114,13 @@ class DenseOutputEvents {
   }
 
  private:
-  // The scan's end in [t0, t_hi], past stop_above at t_hi: the crossing, noted as the series'
-  // scan notes its own.
+  // The scan's end: the first time in [t0, t_hi] the tilt passes stop_above (below at t0,
+  // past it at t_hi), noted with its tilt as the series' scan notes its own crossing.
   template <class Stepper>
   double stop_at(Stepper& stepper, double t0, double t_hi, TiltRecord& record) {
-    const double t_cross = crossing(stepper, t0, t_hi, record.stop_above);
-    stepper.interpolate(t_cross, y_);
-    record.note(t_cross, tilt_(y_));
-    return t_cross;
-  }
-
-  // The first time in [t0, t_hi] the tilt passes stop_above (it is below at t0).
-  template <class Stepper>
-  double crossing(Stepper& stepper, double t0, double t_hi, double stop_above) {
     auto excess = [&](double t) {
       stepper.interpolate(t, y_);
-      return tilt_(y_) - stop_above;
+      return tilt_(y_) - record.stop_above;
     };
     const double below = excess(t0), above = excess(t_hi);
     double t_cross = t0;
@@ -142,6 +132,8 @@ class DenseOutputEvents {
                     [width](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * width; }, iterations)
                     .second;
     }
+    stepper.interpolate(t_cross, y_);
+    record.note(t_cross, tilt_(y_));
     return t_cross;
   }
 
