@@ -147,7 +147,8 @@ Action add_sweep_command(CLI::App& app) {
           ->check(positive_count()),
       cmd->add_flag("--tolerance-column", s->tolerance_column,
                     "nonlinear: add the column (HDF5: dataset) `nonlinear_tolerance`, the rtol that decided each "
-                    "verdict (0: the closed form of a symmetric top)")};
+                    "verdict (0: decided without integration, by a symmetric top's closed form or the energy and vertical "
+                    "momentum's barrier)")};
   return [inputs, s, nonlinear_only] {
     inputs->resolve();
     if (s->model != "nonlinear")

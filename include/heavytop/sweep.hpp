@@ -87,7 +87,7 @@ struct SweepVerdict {
   LyapunovCertificate lyapunov_certificate = LyapunovCertificate::None;
   std::optional<bool> nonlinear;  ///< tilt stayed <= max_tilt over the horizon (when asked)
   /// The rtol (dimensionless) of the run that decided `nonlinear` (verdicts.hpp's
-  /// DecidedVerdict::tolerance: 0 for the closed form); set with it.
+  /// DecidedVerdict::tolerance: 0 when decided without integration); set with it.
   std::optional<double> nonlinear_tolerance;
 };
 

@@ -11,6 +11,9 @@
 ///      bounds, exact for the motion the integrators approximate) lies more than 1e-6 rad
 ///      below max_tilt (1e6 times the sweep's tolerance if that is more) stays up: no
 ///      integration at all;
+///   1b. an asymmetric conservative body whose energy E and vertical momentum L_zeta forbid its
+///      axis from ever reaching max_tilt (tilt_forbidden_by_conserved_quantities below, a
+///      proof for the exact motion, with the same margin) stays up: no integration either;
 ///   2. every other point is integrated once at a loose tolerance (kLooseTolerance) with a band
 ///      [max_tilt - band, max_tilt + band] around the threshold (batch_tilt_bands). The
 ///      tolerance bounds each step's error (the series' remainder: the last two terms are at
@@ -43,10 +46,28 @@ inline constexpr double kLooseTolerance = 1e-6;
 struct DecidedVerdict {
   bool exceeded = false;  ///< the tilt passed max_tilt within the horizon
   /// The rtol (dimensionless) of the integration that decided it: kLooseTolerance (the loose
-  /// pass) or options.rtol (the default pass: batch_tilt_verdicts' verdict); 0 for the closed
-  /// form (a symmetric top that stays up, step 1 above).
+  /// pass) or options.rtol (the default pass: batch_tilt_verdicts' verdict); 0 without
+  /// integration (a body that stays up by the closed form or by the conserved quantities,
+  /// steps 1 and 1b above).
   double tolerance = 0.0;
 };
+
+/// True when the conservative body's energy E and vertical momentum L_zeta from `initial`
+/// forbid its axis from ever reaching the tilt `max_tilt` (rad): some tilt between the start's
+/// and max_tilt is one no state with that E and L_zeta has, with a relative margin `margin`
+/// (dimensionless, >= 0). Why (docs/performance.md, "The conserved quantities' barrier"): at
+/// k_zeta = u the kinetic energy is E - m g R u, and the least kinetic energy with
+/// (I w).gamma = L_zeta is L_zeta^2 / (2 gamma.I gamma) >= L_zeta^2 / (2 D(u)), D(u) =
+/// max(A, B) (1 - u^2) + C u^2. So g(u) = E - m g R u - L_zeta^2 / (2 D(u)) >= 0 wherever the
+/// axis can be, and the axis, moving continuously from the start, never passes a u with
+/// g(u) < 0. Tested at 32 tilts from max_tilt to the start's; a u counts when g(u) < -margin
+/// (|E - m g R u0| + |m g R|), which holds against any drift of E and L_zeta smaller than that.
+/// For a fast spin about the axis of greatest moment this decides exactly the superfast spins
+/// ((C - max(A, B)) w^2 > m g R, the energy-Casimir region), the bound on the tilt being about
+/// tilt0 sqrt((C w^2 - m g R) / ((C - max(A, B)) w^2 - m g R)). Ignores damping and a general
+/// body's terms: call it for a conservative batchable() body.
+bool tilt_forbidden_by_conserved_quantities(const Body& body, const InitialState& initial, double max_tilt,
+                                            double margin);
 
 /// The verdicts of batch_tilt_verdicts(bodies, initials, horizon, max_tilt, options) (its
 /// `exceeded`), each computed as the file comment says, into out[i]. Every body must be
