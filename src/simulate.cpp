@@ -224,16 +224,21 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
   s.model = model;
   // Every piece is checked before it is handed on: a failure never passes a NaN along.
   detail::SampleStream samples = stream;
-  // Here, once for every model and integrator, the people's columns tilt and azimuth are put
-  // after SPEC's five, and taken out again after the piece is handed on: the integrators index
-  // their own extra columns and reuse the piece.
+  // Here, once for every model and integrator, the people's columns tilt and azimuth follow
+  // SPEC's five: the nonlinear model's writer puts them there from the axis k itself; for the
+  // closed forms they are put in from theta and phi, and taken out again after the piece is
+  // handed on (the closed forms reuse the piece).
+  samples.axis_direction = true;
   ContinuousAzimuth azimuth;
   samples.flush = [&](Trajectory& part) {
     check_finite(model, part);
     s.samples += part.size();
-    insert_axis_direction_columns(part, azimuth);
+    const bool written = !part.extra.empty() && part.extra.front().first == kAxisDirectionColumns[0];
+    if (!written) insert_axis_direction_columns(part, azimuth);
     stream.flush(part);
-    if (part.extra.size() >= kAxisDirectionColumns.size() && part.extra.front().first == kAxisDirectionColumns[0])
+    // (a sink that took the piece by move left it empty)
+    if (!written && part.extra.size() >= kAxisDirectionColumns.size() &&
+        part.extra.front().first == kAxisDirectionColumns[0])
       part.extra.erase(part.extra.begin(), part.extra.begin() + kAxisDirectionColumns.size());
   };
   try {

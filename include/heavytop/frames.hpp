@@ -52,6 +52,9 @@ class ContinuousAzimuth {
  public:
   /// rad, the next sample's continuous azimuth.
   double operator()(double theta, double phi);
+  /// rad, the same from the axis' horizontal components k_xi = sin theta cos phi and
+  /// k_eta = -sin phi (dimensionless).
+  double of_axis(double k_xi, double k_eta);
 
  private:
   double previous_ = 0.0;

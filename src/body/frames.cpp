@@ -45,18 +45,36 @@ RigidBodyState initial_rigid_body_state(const InitialState& s) {
   return x;
 }
 
-double tilt(double theta, double phi) {
-  const double horizontal = std::hypot(std::sin(theta) * std::cos(phi), std::sin(phi));  // |(k_xi, k_eta)|
-  return std::atan2(horizontal, std::cos(theta) * std::cos(phi));
+namespace {
+
+// The horizontal components of k and its vertical one (SPEC section 2), from one sin and cos
+// of each angle: (sin theta cos phi, -sin phi) and cos theta cos phi.
+struct Axis {
+  double xi, eta, zeta;
+};
+Axis axis_of(double theta, double phi) {
+  const double sin_theta = std::sin(theta), cos_theta = std::cos(theta);
+  const double sin_phi = std::sin(phi), cos_phi = std::cos(phi);
+  return {sin_theta * cos_phi, -sin_phi, cos_theta * cos_phi};
 }
 
+double tilt_of(const Axis& k) { return std::atan2(std::hypot(k.xi, k.eta), k.zeta); }
+
+}  // namespace
+
+double tilt(double theta, double phi) { return tilt_of(axis_of(theta, phi)); }
+
 double azimuth(double theta, double phi) {
-  return std::atan2(-std::sin(phi), std::sin(theta) * std::cos(phi));  // atan2(k_eta, k_xi); atan2(0, 0) = 0
+  const Axis k = axis_of(theta, phi);
+  return std::atan2(k.eta, k.xi);  // atan2(0, 0) = 0
 }
 
 double ContinuousAzimuth::operator()(double theta, double phi) {
-  const double k_xi = std::sin(theta) * std::cos(phi);
-  const double k_eta = -std::sin(phi);
+  const Axis k = axis_of(theta, phi);
+  return of_axis(k.xi, k.eta);
+}
+
+double ContinuousAzimuth::of_axis(double k_xi, double k_eta) {
   if (k_xi == 0.0 && k_eta == 0.0) return previous_;  // vertical: no direction, keep the last one (0 at first)
   const double wrapped = std::atan2(k_eta, k_xi);
   if (!started_) {
@@ -70,8 +88,9 @@ double ContinuousAzimuth::operator()(double theta, double phi) {
 void insert_axis_direction_columns(Trajectory& part, ContinuousAzimuth& continuous) {
   std::vector<double> tilts(part.size()), azimuths(part.size());
   for (std::size_t i = 0; i < part.size(); ++i) {
-    tilts[i] = tilt(part.theta[i], part.phi[i]);
-    azimuths[i] = continuous(part.theta[i], part.phi[i]);
+    const Axis k = axis_of(part.theta[i], part.phi[i]);  // once for both columns
+    tilts[i] = tilt_of(k);
+    azimuths[i] = continuous.of_axis(k.xi, k.eta);
   }
   part.extra.insert(part.extra.begin(), {{std::string(kAxisDirectionColumns[0]), std::move(tilts)},
                                          {std::string(kAxisDirectionColumns[1]), std::move(azimuths)}});

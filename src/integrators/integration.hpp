@@ -194,6 +194,9 @@ struct SampleStream {
   std::size_t chunk = static_cast<std::size_t>(-1);
   std::function<void(Trajectory&)> flush;
   Progress progress;
+  // The nonlinear model's writer puts the people's columns tilt and azimuth first among the
+  // extra ones, from the axis k itself (simulate() asks; the simulate_* functions do not).
+  bool axis_direction = false;
 
   // s, the last sample's time (0 without samples): the run's horizon.
   double horizon() const { return count == 0 ? 0.0 : time(count - 1); }

@@ -11,6 +11,7 @@
 // state, the body and t).
 
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <functional>
@@ -95,8 +96,11 @@ class SampleWriter {
       : body_(body), samples_(samples), initial_(initial), damped_(damped) {
     const std::size_t room = std::min(samples.count, samples.chunk);
     out_.reserve(room);
-    std::vector<const char*> names = {"energy",       "vertical_momentum",       "axial_momentum",
-                                      "energy_drift", "vertical_momentum_drift", "axial_momentum_drift"};
+    std::vector<const char*> names;
+    if (samples.axis_direction) names = {kAxisDirectionColumns[0].data(), kAxisDirectionColumns[1].data()};
+    for (const char* name : {"energy", "vertical_momentum", "axial_momentum", "energy_drift",
+                             "vertical_momentum_drift", "axial_momentum_drift"})
+      names.push_back(name);
     if (damped_) {
       for (const char* name : {"dissipated_work", "vertical_momentum_loss", "axial_momentum_loss"})
         names.push_back(name);
@@ -111,8 +115,15 @@ class SampleWriter {
   // Sample i at t; the last sample (and every full chunk) is flushed.
   void write(std::size_t i, double t, const SampleValues& v) {
     push_angles(out_, t, v.angles);
-    const ConservedQuantities& q = v.conserved;
     std::size_t c = 0;
+    if (samples_.axis_direction) {
+      // From k itself: frames.cpp's tilt() and azimuth() of theta and phi are the same angles
+      // through a round trip (two sines and cosines more a sample, the last digit apart).
+      const auto k = v.body.attitude.col(2);
+      out_.extra[c++].second.push_back(std::atan2(std::hypot(k.x(), k.y()), k.z()));
+      out_.extra[c++].second.push_back(azimuth_.of_axis(k.x(), k.y()));
+    }
+    const ConservedQuantities& q = v.conserved;
     for (const double value : {q.energy, q.vertical_momentum, q.axial_momentum, q.energy - initial_.energy,
                                q.vertical_momentum - initial_.vertical_momentum,
                                q.axial_momentum - initial_.axial_momentum})
@@ -132,6 +143,7 @@ class SampleWriter {
   const SampleStream& samples_;
   ConservedQuantities initial_;
   bool damped_;
+  ContinuousAzimuth azimuth_;
   Trajectory out_;
 };
 
