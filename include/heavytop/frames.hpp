@@ -4,6 +4,7 @@
 /// Fixed frame (xi, eta, zeta), zeta up; k is the unit vector of the body's spin axis.
 
 #include <array>
+#include <cmath>
 #include <string_view>
 
 #include <Eigen/Core>
@@ -36,6 +37,12 @@ AxisAngles axis_angles(const Eigen::Vector3d& k, const Eigen::Vector3d& k_rate);
 /// cos phi) (SPEC section 2), computed as atan2(|k_perp|, k_zeta) so that it keeps full relative
 /// precision near the vertical, where acos loses half the digits.
 double tilt(double theta, double phi);
+
+/// rad, in [0, pi]: tilt() of the axis k itself, atan2(hypot(k_xi, k_eta), k_zeta) (k's fixed-frame
+/// components, dimensionless): what every tilt in heavytop is computed by.
+inline double tilt_of_axis(double k_xi, double k_eta, double k_zeta) {
+  return std::atan2(std::hypot(k_xi, k_eta), k_zeta);
+}
 
 /// rad, in (-pi, pi]: the direction the axis leans to, atan2(k_eta, k_xi) (0 for a vertical axis).
 double azimuth(double theta, double phi);

@@ -58,7 +58,7 @@ Axis axis_of(double theta, double phi) {
   return {sin_theta * cos_phi, -sin_phi, cos_theta * cos_phi};
 }
 
-double tilt_of(const Axis& k) { return std::atan2(std::hypot(k.xi, k.eta), k.zeta); }
+double tilt_of(const Axis& k) { return tilt_of_axis(k.xi, k.eta, k.zeta); }
 
 }  // namespace
 

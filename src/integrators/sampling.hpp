@@ -11,7 +11,6 @@
 // state, the body and t).
 
 #include <array>
-#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <functional>
@@ -120,7 +119,7 @@ class SampleWriter {
       // From k itself: frames.cpp's tilt() and azimuth() of theta and phi are the same angles
       // through a round trip (two sines and cosines more a sample, the last digit apart).
       const auto k = v.body.attitude.col(2);
-      out_.extra[c++].second.push_back(std::atan2(std::hypot(k.x(), k.y()), k.z()));
+      out_.extra[c++].second.push_back(tilt_of_axis(k.x(), k.y(), k.z()));
       out_.extra[c++].second.push_back(azimuth_.of_axis(k.x(), k.y()));
     }
     const ConservedQuantities& q = v.conserved;

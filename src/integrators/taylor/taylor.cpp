@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "heavytop/general_body.hpp"
+#include "heavytop/frames.hpp"
 #include "heavytop/rigid_body.hpp"
 
 #include "integrators/integration.hpp"
@@ -50,7 +51,7 @@ template <class State>
 double tilt_of(const State& x) {
   const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
   const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
-  return std::atan2(std::hypot(g1, g2), qw * qw - qx * qx - qy * qy + qz * qz);
+  return tilt_of_axis(g1, g2, qw * qw - qx * qx - qy * qy + qz * qz);  // |(g1, g2)| = sin(tilt), as |(k_xi, k_eta)|
 }
 
 // A root of the polynomial s on [a, b] where s(a), s(b) have opposite signs, to ~1e-15 of
