@@ -25,7 +25,8 @@ struct alignas(64) Jet {
   double c[kM + 1][8];
 };
 
-// ---- 4ae2fee's recurrence.hpp for Plain and SpinFactored, verbatim but for the names ----
+// ---- 4ae2fee's recurrence.hpp for Plain and SpinFactored, verbatim but for the names and the
+// products' order (j = 1..n-1, 0, n: recurrence_kernels.hpp) ----
 using v2d = double __attribute__((vector_size(16)));
 inline v2d load2(const double* p) {
   v2d v;
@@ -39,7 +40,7 @@ void old_plain(Jet& x, double* g1, double* g2, int p, const PlainConstants& k) {
     v2d qw_w{}, qx_w{}, qy_w{}, qz_w{}, wx_w3{}, yz_w3{};
     v2d xz_yz = {}, wy_wx = {}, w23_w31 = {};
     double w12 = 0.0;
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       const double *a = x.c[j], *b = x.c[n - j];
       const v2d w = load2(b + 4), w3 = splat(b[6]);
       qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
@@ -48,7 +49,10 @@ void old_plain(Jet& x, double* g1, double* g2, int p, const PlainConstants& k) {
       wy_wx += splat(a[0]) * v2d{b[2], b[1]};
       w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
       w12 += a[4] * b[5];
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);
+    term(0);
+    if (n > 0) term(n);
     g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
     g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
     const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
@@ -68,13 +72,16 @@ void old_factored(Jet& x, double* g1, double* g2, int p, const FactoredConstants
   const double nutation = k.c_over_a * x.c[0][6];
   for (int n = 0; n < p; ++n) {
     v2d pw_v{}, px_v{}, py_v{}, pz_v{}, xz_yz = {}, wy_wx = {};
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       const double *a = x.c[j], *b = x.c[n - j];
       const v2d v = load2(b + 4);
       pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
       xz_yz += load2(a + 1) * splat(b[3]);
       wy_wx += splat(a[0]) * v2d{b[2], b[1]};
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);
+    term(0);
+    if (n > 0) term(n);
     g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
     g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
     const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);

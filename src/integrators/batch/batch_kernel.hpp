@@ -45,23 +45,42 @@ inline double integer_power(double x, int n) {
   return r;
 }
 
+// x = m 2^e with m in [0.5, 1) for a normal x > 0 (taylor/series.hpp's split_normal).
+inline bool split_normal(double x, double& m, int& e) {
+  unsigned long long bits;
+  __builtin_memcpy(&bits, &x, sizeof bits);
+  const int biased = static_cast<int>(bits >> 52) & 0x7ff;
+  if (biased == 0 || biased == 0x7ff) return false;
+  bits = (bits & 0x000fffffffffffffULL) | (1022ULL << 52);
+  __builtin_memcpy(&m, &bits, sizeof m);
+  e = biased - 1022;
+  return true;
+}
+inline double power_of_two(int k) {  // 2^k, |k| <= 1022
+  const unsigned long long bits = static_cast<unsigned long long>(k + 1023) << 52;
+  double v;
+  __builtin_memcpy(&v, &bits, sizeof v);
+  return v;
+}
+
 // min(pow(x, -1/(p-1)), pow(y, -1/p)) (taylor/integrator.hpp's step: std::min(a, b) = (b < a) ? b : a)
-// with one pow instead of two wherever the order of the two is clear: a < b exactly when
-// x^p > y^(p-1), compared from frexp's mantissas and exponents (no overflow). The margin
-// 1e-10 on that ratio is a relative gap of >= 1e-10 / (p (p - 1)) >= 1.8e-13 between a and b,
-// far beyond pow's error (< 1 ulp): where it is met the pow computed is the smaller of the
-// two pows, so the result is the two-pow result bit for bit; elsewhere (near ties, zeros,
-// infinities, NaN) both are computed as before.
+// with one pow instead of two wherever the order of the two is clear, as
+// taylor/series.hpp's step_from_norms: a < b exactly when x^p > y^(p-1), compared from the
+// mantissas and exponents (no overflow). The margin 1e-10 on that ratio is a relative gap of
+// >= 1e-10 / (p (p - 1)) >= 1.8e-13 between a and b, far beyond pow's error (< 1 ulp): where
+// it is met the pow computed is the smaller of the two pows, so the result is the two-pow
+// result bit for bit; elsewhere (near ties, zeros, subnormals, infinities, NaN) both are
+// computed.
 inline double step_size(double x, double y, int p, double inv_pm1, double inv_p) {
-  if (x > 0.0 && y > 0.0 && x < __builtin_inf() && y < __builtin_inf()) {
-    int ex = 0, ey = 0;
-    const double mx = __builtin_frexp(x, &ex), my = __builtin_frexp(y, &ey);
+  double mx, my;
+  int ex, ey;
+  if (x > 0.0 && y > 0.0 && split_normal(x, mx, ex) && split_normal(y, my, ey)) {
     const long d = static_cast<long>(p) * ex - static_cast<long>(p - 1) * ey;
-    // x^p / y^(p-1) = r 2^d, r in [2^-24, 2^23]
-    const double r = integer_power(mx, p) / integer_power(my, p - 1);
-    const double ratio = d > 60 ? 2.0 : d < -60 ? 0.0 : __builtin_ldexp(r, static_cast<int>(d));
-    if (ratio > 1.0 + 1e-10) return __builtin_pow(x, inv_pm1);
-    if (ratio < 1.0 - 1e-10) return __builtin_pow(y, inv_p);
+    if (d > 60) return __builtin_pow(x, inv_pm1);  // x^p / y^(p-1) = r 2^d, r in [2^-24, 2^23]
+    if (d < -60) return __builtin_pow(y, inv_p);
+    const double r = integer_power(mx, p) / integer_power(my, p - 1), scale = power_of_two(static_cast<int>(-d));
+    if (r > (1.0 + 1e-10) * scale) return __builtin_pow(x, inv_pm1);
+    if (r < (1.0 - 1e-10) * scale) return __builtin_pow(y, inv_p);
   }
   const double a = __builtin_pow(x, inv_pm1), b = __builtin_pow(y, inv_p);
   return (b < a) ? b : a;
@@ -93,12 +112,15 @@ inline void coefficients(Work& w, int p, const Reciprocals& r) {
     for (int n = 0; n < p; ++n) {
       V pw1 = {}, pw2 = {}, px1 = {}, px2 = {}, py1 = {}, py2 = {}, pz1 = {}, pz2 = {};
       V xz = {}, yz = {}, wy = {}, wx = {};
-      for (int j = 0; j <= n; ++j) {
+      auto term = [&](int j) {
         const V *a = w.c[j], *b = w.c[n - j];
         pw1 += a[0] * b[4], pw2 += a[0] * b[5], px1 += a[1] * b[4], px2 += a[1] * b[5];
         py1 += a[2] * b[4], py2 += a[2] * b[5], pz1 += a[3] * b[4], pz2 += a[3] * b[5];
         xz += a[1] * b[3], yz += a[2] * b[3], wy += a[0] * b[2], wx += a[0] * b[1];
-      }
+      };
+      for (int j = 1; j < n; ++j) term(j);  // the recurrence's order of the products
+      term(0);
+      if (n > 0) term(n);
       w.g1[n] = 2.0 * (xz - wy);
       w.g2[n] = 2.0 * (yz + wx);
       const double half = r.half[n], inv = r.inv[n];
@@ -118,14 +140,17 @@ inline void coefficients(Work& w, int p, const Reciprocals& r) {
       V qw3 = {}, qx3 = {}, qy3 = {}, qz3 = {};  // q_i w3
       V xz = {}, yz = {}, wy = {}, wx = {};
       V w23 = {}, w31 = {}, w12 = {};
-      for (int j = 0; j <= n; ++j) {
+      auto term = [&](int j) {
         const V *a = w.c[j], *b = w.c[n - j];
         qw1 += a[0] * b[4], qw2 += a[0] * b[5], qx1 += a[1] * b[4], qx2 += a[1] * b[5];
         qy1 += a[2] * b[4], qy2 += a[2] * b[5], qz1 += a[3] * b[4], qz2 += a[3] * b[5];
         qw3 += a[0] * b[6], qx3 += a[1] * b[6], qy3 += a[2] * b[6], qz3 += a[3] * b[6];
         xz += a[1] * b[3], yz += a[2] * b[3], wy += a[0] * b[2], wx += a[0] * b[1];
         w23 += a[5] * b[6], w31 += a[6] * b[4], w12 += a[4] * b[5];
-      }
+      };
+      for (int j = 1; j < n; ++j) term(j);  // the recurrence's order of the products
+      term(0);
+      if (n > 0) term(n);
       w.g1[n] = 2.0 * (xz - wy);
       w.g2[n] = 2.0 * (yz + wx);
       const double half = r.half[n], inv = r.inv[n];

@@ -29,7 +29,7 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
     v2d qw_w{}, qx_w{}, qy_w{}, qz_w{}, wx_w3{}, yz_w3{};  // q_i (w1, w2); (qw, qx) w3, (qy, qz) w3
     v2d xz_yz = {}, wy_wx = {}, w23_w31 = {};
     double w12 = 0.0;
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       const double *a = c[j], *b = c[n - j];
       const v2d w = load2(b + 4), w3 = splat(b[6]);
       qw_w += splat(a[0]) * w, qx_w += splat(a[1]) * w, qy_w += splat(a[2]) * w, qz_w += splat(a[3]) * w;
@@ -38,7 +38,10 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
       wy_wx += splat(a[0]) * v2d{b[2], b[1]};
       w23_w31 += load2(a + 5) * v2d{b[6], b[4]};
       w12 += a[4] * b[5];
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
+    term(0);
+    if (n > 0) term(n);
     g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
     g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
     const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
@@ -59,13 +62,16 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
   const double nutation = k.c_over_a * c[0][6];  // rad/s, C w3 / A
   for (int n = 0; n < p; ++n) {
     v2d pw_v{}, px_v{}, py_v{}, pz_v{}, xz_yz = {}, wy_wx = {};  // p_i (v1, v2); gamma
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       const double *a = c[j], *b = c[n - j];
       const v2d v = load2(b + 4);
       pw_v += splat(a[0]) * v, px_v += splat(a[1]) * v, py_v += splat(a[2]) * v, pz_v += splat(a[3]) * v;
       xz_yz += load2(a + 1) * splat(b[3]);
       wy_wx += splat(a[0]) * v2d{b[2], b[1]};
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
+    term(0);
+    if (n > 0) term(n);
     g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
     g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
     const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
@@ -143,22 +149,28 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
     V4 a1 = {}, a2 = {}, a3 = {}, ag = {}, aw = {};
 #if HEAVYTOP_RECURRENCE_WIDE
     V8 a12 = {}, a3g = {};
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       a12 += r.qq[j] * r.w12[n - j];
       a3g += r.qa[j] * r.w3b[n - j];
       aw += r.wa[j] * r.wb[n - j];
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
+    term(0);
+    if (n > 0) term(n);
     a1 = V4{a12[0], a12[1], a12[2], a12[3]}, a2 = V4{a12[4], a12[5], a12[6], a12[7]};
     a3 = V4{a3g[0], a3g[1], a3g[2], a3g[3]}, ag = V4{a3g[4], a3g[5], a3g[6], a3g[7]};
 #else
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       const double* b = c[n - j];
       a1 += r.q[j] * V4{b[4], b[4], b[4], b[4]};
       a2 += r.q[j] * V4{b[5], b[5], b[5], b[5]};
       a3 += r.q[j] * V4{b[6], b[6], b[6], b[6]};
       ag += r.ga[j] * r.gb[n - j];
       aw += r.wa[j] * r.wb[n - j];
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
+    term(0);
+    if (n > 0) term(n);
 #endif
     g1[n] = 2.0 * (ag[0] - ag[2]);
     g2[n] = 2.0 * (ag[1] + ag[3]);
@@ -187,19 +199,25 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
     V4 a1 = {}, a2 = {}, ag = {};  // p v1, p v2 (lanes pw, px, py, pz); gamma's
 #if HEAVYTOP_RECURRENCE_WIDE
     V8 a12 = {}, a3g = {};  // a3g's lower half (p w3) is not used: w3 is no variable here
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       a12 += r.qq[j] * r.w12[n - j];
       a3g += r.qa[j] * r.w3b[n - j];
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
+    term(0);
+    if (n > 0) term(n);
     a1 = V4{a12[0], a12[1], a12[2], a12[3]}, a2 = V4{a12[4], a12[5], a12[6], a12[7]};
     ag = V4{a3g[4], a3g[5], a3g[6], a3g[7]};
 #else
-    for (int j = 0; j <= n; ++j) {
+    auto term = [&](int j) {
       const double* b = c[n - j];
       a1 += r.q[j] * V4{b[4], b[4], b[4], b[4]};
       a2 += r.q[j] * V4{b[5], b[5], b[5], b[5]};
       ag += r.ga[j] * r.gb[n - j];
-    }
+    };
+    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
+    term(0);
+    if (n > 0) term(n);
 #endif
     g1[n] = 2.0 * (ag[0] - ag[2]);
     g2[n] = 2.0 * (ag[1] + ag[3]);

@@ -8,10 +8,12 @@
 //
 // Bit-identity: every product and every sum of the recurrence is the one recurrence.hpp forms
 // (the batch's rule, integrators/batch/batch_kernel.hpp): each accumulator adds its products
-// in the order j = 0..n from 0, no fused multiply-add (-ffp-contract=off, -mno-fma), the same
-// final expressions. Only the grouping into registers differs: the four quaternion components
-// q_i times one w_m form one 4-wide product (an outer product q x w, three of them per j), the
-// vertical's four products one more, the gyroscopic three one more.
+// from 0 in one order, j = 1..n-1, then j = 0 and j = n, no fused multiply-add
+// (-ffp-contract=off, -mno-fma), the same final expressions. That order puts last the two
+// products with row n, which order n - 1 has only just formed, so the rest of the sum runs
+// while it is formed (bench_recurrence). Only the grouping into registers differs: the four
+// quaternion components q_i times one w_m form one 4-wide product (an outer product q x w,
+// three of them per j), the vertical's four products one more, the gyroscopic three one more.
 
 namespace heavytop::detail::taylor {
 

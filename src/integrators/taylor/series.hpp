@@ -42,26 +42,50 @@ inline v2d load2(const double* p) {
 }
 inline v2d splat(double a) { return v2d{a, a}; }
 
+// x = m 2^e with m in [0.5, 1) for a normal x > 0: frexp's m and e from the bits (no call).
+inline bool split_normal(double x, double& m, int& e) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const int biased = static_cast<int>(bits >> 52) & 0x7ff;
+  if (biased == 0 || biased == 0x7ff) return false;  // zero, subnormal, infinity, NaN
+  bits = (bits & 0x000fffffffffffffULL) | (std::uint64_t{1022} << 52);
+  std::memcpy(&m, &bits, sizeof m);
+  e = biased - 1022;
+  return true;
+}
+
+// 2^k, |k| <= 1022 (from the bits: exact).
+inline double power_of_two(int k) {
+  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
+  double v;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
+}
+
 // min(x^(-1/(p-1)), y^(-1/p)) as std::min of the two std::pow, bit for bit, with one pow
-// wherever the smaller is clear: a < b exactly when x^p > y^(p-1), compared from frexp's
-// mantissas and exponents; a margin of 1e-10 on that ratio is a relative gap of at least
-// 1.8e-13 between a and b, far beyond pow's error (< 1 ulp), so the one pow computed is the
-// smaller of the two. Near a tie, and for zeros, infinities and NaN, both (the batch's kernel
-// does the same, integrators/batch/batch_kernel.hpp).
+// wherever the smaller is clear: a < b exactly when x^p > y^(p-1), compared from the mantissas
+// and exponents of x and y (r 2^d with r = mx^p / my^(p-1) against 1 +- 1e-10, as r against
+// (1 +- 1e-10) 2^-d: scaling by a power of two is exact, so the comparison is ldexp(r, d)'s);
+// a margin of 1e-10 on that ratio is a relative gap of at least 1.8e-13 between a and b, far
+// beyond pow's error (< 1 ulp), so the one pow computed is the smaller of the two. Near a tie,
+// and for zeros, subnormals, infinities and NaN, both (the batch's kernel does the same,
+// integrators/batch/batch_kernel.hpp).
 inline double step_from_norms(double x, double y, int p) {
   const double ea = -1.0 / (p - 1), eb = -1.0 / p;
-  if (x > 0.0 && y > 0.0 && std::isfinite(x) && std::isfinite(y)) {
-    int ex = 0, ey = 0;
-    double mx = std::frexp(x, &ex), my = std::frexp(y, &ey);
+  double mx, my;
+  int ex, ey;
+  if (x > 0.0 && y > 0.0 && split_normal(x, mx, ex) && split_normal(y, my, ey)) {
     double px = 1.0, py = 1.0;  // mx^p, my^(p-1), in [2^-24, 1]
     for (int n = p; n > 0; n >>= 1, mx *= mx)
       if (n & 1) px *= mx;
     for (int n = p - 1; n > 0; n >>= 1, my *= my)
       if (n & 1) py *= my;
     const long d = static_cast<long>(p) * ex - static_cast<long>(p - 1) * ey;
-    const double ratio = d > 60 ? 2.0 : d < -60 ? 0.0 : std::ldexp(px / py, static_cast<int>(d));
-    if (ratio > 1.0 + 1e-10) return std::pow(x, ea);
-    if (ratio < 1.0 - 1e-10) return std::pow(y, eb);
+    if (d > 60) return std::pow(x, ea);  // the ratio r 2^d > 2^36
+    if (d < -60) return std::pow(y, eb);
+    const double r = px / py, scale = power_of_two(static_cast<int>(-d));
+    if (r > (1.0 + 1e-10) * scale) return std::pow(x, ea);
+    if (r < (1.0 - 1e-10) * scale) return std::pow(y, eb);
   }
   return std::min(std::pow(x, ea), std::pow(y, eb));
 }
