@@ -26,6 +26,7 @@ if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--peers" ]; then
     python3-venv python3-pip python3-setuptools python3-wheel  # the pip install test (python_pip)
     libopenmpi-dev openmpi-bin          # heavytop-mpi: sweeps across the ranks of an MPI job (mpirun)
     strace                              # tests/startup.sh: what a command opens before its work
+    valgrind                            # tests/other_processors.sh: the command where AVX-512 is absent
     clang-14 libclang-rt-14-dev         # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
     chromium                            # the report's and the page's browser tests
   )

@@ -98,14 +98,18 @@ constexpr int kM = 24;  // kTaylorMaxOrder (taylor.hpp; recurrence_dispatch.cpp 
 typedef double V4 __attribute__((vector_size(32)));
 typedef double V8 __attribute__((vector_size(64)));
 
-// 0.5 / (n + 1) and 1 / (n + 1): the same values recurrence.hpp divides out each time.
+// 0.5 / (n + 1) and 1 / (n + 1): the same values recurrence.hpp divides out each time
+// (a division is correctly rounded at compile time as at run time). constexpr, so that no
+// code of this file runs before the dispatch has chosen it: a constructor here was compiled
+// with this file's instruction set and ran at start-up on every processor (SIGILL without
+// AVX-512; tests/valgrind_start.sh runs the command where AVX-512 is absent).
 struct Reciprocals {
   double half[kM], inv[kM];
-  Reciprocals() {
+  constexpr Reciprocals() : half{}, inv{} {
     for (int n = 0; n < kM; ++n) half[n] = 0.5 / (n + 1), inv[n] = 1.0 / (n + 1);
   }
 };
-const Reciprocals reciprocals;
+constexpr Reciprocals reciprocals;
 
 // Row n of the jet rearranged for the products of order >= n: the quaternion q, and the
 // vertical's and the gyroscopic products' factors in lane order,
