@@ -42,16 +42,16 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
     for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
     term(0);
     if (n > 0) term(n);
-    g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
-    g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
+    const double g1n = 2.0 * (xz_yz[0] - wy_wx[0]), g2n = 2.0 * (xz_yz[1] + wy_wx[1]);
+    g1[n] = g1n, g2[n] = g2n;  // stored, and used from registers (g1 and g2 may alias c)
     const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
     double* next = c[n + 1];
     next[0] = -half * (qx_w[0] + qy_w[1] + yz_w3[1]);
     next[1] = half * (qw_w[0] + yz_w3[0] - qz_w[1]);
     next[2] = half * (qw_w[1] + qz_w[0] - wx_w3[1]);
     next[3] = half * (wx_w3[0] + qx_w[1] - qy_w[0]);
-    next[4] = inv * (k.e1 * w23_w31[0] + k.ka * g2[n]);
-    next[5] = inv * (k.e2 * w23_w31[1] - k.kb * g1[n]);
+    next[4] = inv * (k.e1 * w23_w31[0] + k.ka * g2n);
+    next[5] = inv * (k.e2 * w23_w31[1] - k.kb * g1n);
     next[6] = inv * (k.e3 * w12);
     next[7] = 0.0;
   }
@@ -72,8 +72,8 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
     for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
     term(0);
     if (n > 0) term(n);
-    g1[n] = 2.0 * (xz_yz[0] - wy_wx[0]);
-    g2[n] = 2.0 * (xz_yz[1] + wy_wx[1]);
+    const double g1n = 2.0 * (xz_yz[0] - wy_wx[0]), g2n = 2.0 * (xz_yz[1] + wy_wx[1]);
+    g1[n] = g1n, g2[n] = g2n;
     const double half = 0.5 / (n + 1), inv = 1.0 / (n + 1);
     const double* row = c[n];
     double* next = c[n + 1];
@@ -81,8 +81,8 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
     next[1] = half * (pw_v[0] - pz_v[1]);
     next[2] = half * (pw_v[1] + pz_v[0]);
     next[3] = half * (px_v[1] - py_v[0]);
-    next[4] = inv * (-nutation * row[5] + k.ka * g2[n]);
-    next[5] = inv * (nutation * row[4] - k.ka * g1[n]);
+    next[4] = inv * (-nutation * row[5] + k.ka * g2n);
+    next[5] = inv * (nutation * row[4] - k.ka * g1n);
     next[6] = 0.0;
     next[7] = 0.0;
   }
@@ -96,6 +96,7 @@ namespace {
 
 constexpr int kM = 24;  // kTaylorMaxOrder (taylor.hpp; recurrence_dispatch.cpp checks)
 typedef double V4 __attribute__((vector_size(32)));
+typedef long long V4i __attribute__((vector_size(32)));
 typedef double V8 __attribute__((vector_size(64)));
 
 // 0.5 / (n + 1) and 1 / (n + 1): the same values recurrence.hpp divides out each time
@@ -127,17 +128,109 @@ struct alignas(64) Rows {
   V4 wa[kM + 1], wb[kM + 1];
 };
 
-inline void arrange(Rows& r, const double* c, int n, bool gyro) {
-  const V4 q = {c[0], c[1], c[2], c[3]}, ga = {c[1], c[2], c[0], c[0]}, gb = {c[3], c[3], c[2], c[1]};
+// One row of the jet in two registers: (qw, qx, qy, qz) and (w1, w2, w3, 0). Each order's row
+// stays in them for the next order's arrange(): read back from the jet, the shortest chain of
+// the recurrence (row n -> its products with row 0 -> row n + 1) would also wait on the store
+// and rebuild the vectors lane by lane.
+struct Row {
+  V4 q, w;
+};
+inline Row load_row(const double* c) { return {V4{c[0], c[1], c[2], c[3]}, V4{c[4], c[5], c[6], 0.0}}; }
+inline void store_row(const Row& row, double* c) {
+  __builtin_memcpy(c, &row.q, sizeof row.q);
+  __builtin_memcpy(c + 4, &row.w, sizeof row.w);
+}
+
+// The sign flipped in the lanes where `mask` has the sign bit: x - y is x + (-y), bit for bit
+// (signed zeros too), so a row's sums keep the scalar expressions' bits.
+constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
+inline V4 flip(V4 v, V4i mask) { return reinterpret_cast<V4>(reinterpret_cast<V4i>(v) ^ mask); }
+
+// Row n + 1's attitude, half (x) the sums of the products a1 = q w1, a2 = q w2, a3 = q w3 in
+// lanes (the scalar form: -half (a1[1] + a2[2] + a3[3]), half (a1[0] + a3[2] - a2[3]),
+// half (a2[0] + a1[3] - a3[1]), half (a3[0] + a2[1] - a1[2]); AttitudeTerms::rate), formed in
+// the registers rather than lane by lane.
+inline V4 attitude_rate(V4 a1, V4 a2, V4 a3, double half) {
+  const V4 x = __builtin_shufflevector(__builtin_shufflevector(a1, a2, 1, 0, 4, 4), a3, 0, 1, 2, 4);
+  const V4 y = __builtin_shufflevector(__builtin_shufflevector(a2, a3, 2, 6, 1, 1), a1, 0, 1, 7, 2);
+  const V4 z = __builtin_shufflevector(__builtin_shufflevector(a3, a2, 3, 7, 1, 1), a1, 0, 1, 2, 6);
+  return V4{-half, half, half, half} * ((x + y) + flip(z, V4i{0, kSign, kSign, kSign}));
+}
+// The spin-factored attitude's: -half (a1[1] + a2[2]), half (a1[0] - a2[3]), half (a2[0] + a1[3]),
+// half (a2[1] - a1[2]) (FactoredAttitudeTerms::rate).
+inline V4 factored_attitude_rate(V4 a1, V4 a2, double half) {
+  const V4 x = __builtin_shufflevector(a1, a2, 1, 0, 4, 5), y = __builtin_shufflevector(a2, a1, 2, 3, 7, 6);
+  return V4{-half, half, half, half} * (x + flip(y, V4i{0, kSign, 0, kSign}));
+}
+// gamma's products ag summed as (ag[1] + ag[3], ag[0] - ag[2], the same again): g2 / 2, g1 / 2.
+inline V4 half_gamma(V4 ag) {
+  return __builtin_shufflevector(ag, ag, 1, 0, 1, 0) +
+         flip(__builtin_shufflevector(ag, ag, 3, 2, 3, 2), V4i{0, kSign, 0, kSign});
+}
+
+inline void arrange(Rows& r, const Row& row, int n, bool gyro) {
+  const V4 q = row.q, w = row.w;
 #if HEAVYTOP_RECURRENCE_WIDE
-  r.qq[n] = V8{q[0], q[1], q[2], q[3], q[0], q[1], q[2], q[3]};
-  r.w12[n] = V8{c[4], c[4], c[4], c[4], c[5], c[5], c[5], c[5]};
-  r.qa[n] = V8{q[0], q[1], q[2], q[3], ga[0], ga[1], ga[2], ga[3]};
-  r.w3b[n] = V8{c[6], c[6], c[6], c[6], gb[0], gb[1], gb[2], gb[3]};
+  r.qq[n] = __builtin_shufflevector(q, q, 0, 1, 2, 3, 0, 1, 2, 3);
+  r.w12[n] = __builtin_shufflevector(w, w, 0, 0, 0, 0, 1, 1, 1, 1);
+  r.qa[n] = __builtin_shufflevector(q, q, 0, 1, 2, 3, 1, 2, 0, 0);
+  r.w3b[n] = __builtin_shufflevector(w, q, 2, 2, 2, 2, 7, 7, 6, 5);
 #else
-  r.q[n] = q, r.ga[n] = ga, r.gb[n] = gb;
+  r.q[n] = q, r.ga[n] = __builtin_shufflevector(q, q, 1, 2, 0, 0), r.gb[n] = __builtin_shufflevector(q, q, 3, 3, 2, 1);
 #endif
-  if (gyro) r.wa[n] = V4{c[5], c[6], c[4], 0.0}, r.wb[n] = V4{c[6], c[4], c[5], 0.0};
+  // (w2, w3, w1, 0) and (w3, w1, w2, 0): the pad is lane 3
+  if (gyro) r.wa[n] = __builtin_shufflevector(w, w, 1, 2, 0, 3), r.wb[n] = __builtin_shufflevector(w, w, 2, 0, 1, 3);
+}
+
+// One order's sums of products: a1 = q w1, a2 = q w2, a3 = q w3 (lanes qw, qx, qy, qz),
+// ag = gamma's, aw = the gyroscopic ones (Plain only), each the sum over j of row j's factor
+// times row n - j's, in the order of recurrence_kernels.hpp: j = 1..n-1, then j = 0 and j = n.
+struct Sums {
+  V4 a1, a2, a3, ag, aw;
+};
+template <bool Gyro>
+inline Sums sums_of(const Rows& r, [[maybe_unused]] const double (*c)[8], [[maybe_unused]] const Row& now, int n) {
+  V4 a1 = {}, a2 = {}, a3 = {}, ag = {}, aw = {};
+#if HEAVYTOP_RECURRENCE_WIDE
+  V8 a12 = {}, a3g = {};
+  auto term = [&](int j) {
+    a12 += r.qq[j] * r.w12[n - j];
+    a3g += r.qa[j] * r.w3b[n - j];
+    if constexpr (Gyro) aw += r.wa[j] * r.wb[n - j];
+  };
+#else
+  // a's factors from row j, b's from row n - j: (q, ga, wa) and (w1 x4, w2 x4, w3 x4, gb, wb)
+  auto add = [&](V4 q, V4 ga, V4 wa, V4 w1, V4 w2, V4 w3, V4 gb, V4 wb) {
+    a1 += q * w1;
+    a2 += q * w2;
+    if constexpr (Gyro) a3 += q * w3;  // w3 is no variable of the spin-factored set
+    ag += ga * gb;
+    if constexpr (Gyro) aw += wa * wb;
+  };
+  auto splat = [](const double* b, int i) { return V4{b[i], b[i], b[i], b[i]}; };
+  for (int j = 1; j < n; ++j) {
+    const double* b = c[n - j];
+    add(r.q[j], r.ga[j], r.wa[j], splat(b, 4), splat(b, 5), splat(b, 6), r.gb[n - j], r.wb[n - j]);
+  }
+  // j = 0 and j = n: row n's factors from its registers (`now`), not from the stores just made
+  const V4 w = now.w;
+  add(r.q[0], r.ga[0], r.wa[0], __builtin_shufflevector(w, w, 0, 0, 0, 0), __builtin_shufflevector(w, w, 1, 1, 1, 1),
+      __builtin_shufflevector(w, w, 2, 2, 2, 2), __builtin_shufflevector(now.q, now.q, 3, 3, 2, 1),
+      __builtin_shufflevector(w, w, 2, 0, 1, 3));
+  if (n > 0)
+    add(now.q, __builtin_shufflevector(now.q, now.q, 1, 2, 0, 0), __builtin_shufflevector(w, w, 1, 2, 0, 3), splat(c[0], 4),
+        splat(c[0], 5), splat(c[0], 6), r.gb[0], r.wb[0]);
+#endif
+#if HEAVYTOP_RECURRENCE_WIDE
+  for (int j = 1; j < n; ++j) term(j);
+  term(0);
+  if (n > 0) term(n);
+#endif
+#if HEAVYTOP_RECURRENCE_WIDE
+  a1 = __builtin_shufflevector(a12, a12, 0, 1, 2, 3), a2 = __builtin_shufflevector(a12, a12, 4, 5, 6, 7);
+  a3 = __builtin_shufflevector(a3g, a3g, 0, 1, 2, 3), ag = __builtin_shufflevector(a3g, a3g, 4, 5, 6, 7);
+#endif
+  return {a1, a2, a3, ag, aw};
 }
 
 }  // namespace
@@ -147,49 +240,22 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
                                                                   const PlainConstants& k) {
   using namespace HEAVYTOP_CAT(ns_, HEAVYTOP_RECURRENCE_SUFFIX);
   Rows r;
+  Row row = load_row(c[0]);
   for (int n = 0; n < p; ++n) {
-    arrange(r, c[n], n, true);
-    // a1 = q w1, a2 = q w2, a3 = q w3 (lanes qw, qx, qy, qz); ag = gamma's; aw = gyro's.
-    V4 a1 = {}, a2 = {}, a3 = {}, ag = {}, aw = {};
-#if HEAVYTOP_RECURRENCE_WIDE
-    V8 a12 = {}, a3g = {};
-    auto term = [&](int j) {
-      a12 += r.qq[j] * r.w12[n - j];
-      a3g += r.qa[j] * r.w3b[n - j];
-      aw += r.wa[j] * r.wb[n - j];
-    };
-    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
-    term(0);
-    if (n > 0) term(n);
-    a1 = V4{a12[0], a12[1], a12[2], a12[3]}, a2 = V4{a12[4], a12[5], a12[6], a12[7]};
-    a3 = V4{a3g[0], a3g[1], a3g[2], a3g[3]}, ag = V4{a3g[4], a3g[5], a3g[6], a3g[7]};
-#else
-    auto term = [&](int j) {
-      const double* b = c[n - j];
-      a1 += r.q[j] * V4{b[4], b[4], b[4], b[4]};
-      a2 += r.q[j] * V4{b[5], b[5], b[5], b[5]};
-      a3 += r.q[j] * V4{b[6], b[6], b[6], b[6]};
-      ag += r.ga[j] * r.gb[n - j];
-      aw += r.wa[j] * r.wb[n - j];
-    };
-    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
-    term(0);
-    if (n > 0) term(n);
-#endif
-    g1[n] = 2.0 * (ag[0] - ag[2]);
-    g2[n] = 2.0 * (ag[1] + ag[3]);
+    arrange(r, row, n, true);
+    const Sums sums = sums_of<true>(r, c, row, n);
+    const V4 s = half_gamma(sums.ag), gamma = s + s;  // (g2, g1): 2 s, exactly
+    g2[n] = gamma[0], g1[n] = gamma[1];
     const double half = reciprocals.half[n], inv = reciprocals.inv[n];
-    double* next = c[n + 1];
-    // q' = q (x) (0, w) / 2, as AttitudeTerms::rate
-    next[0] = -half * (a1[1] + a2[2] + a3[3]);
-    next[1] = half * (a1[0] + a3[2] - a2[3]);
-    next[2] = half * (a2[0] + a1[3] - a3[1]);
-    next[3] = half * (a3[0] + a2[1] - a1[2]);
-    // Euler: I w' = (I w) x w + m g R (gamma x e3)
-    next[4] = inv * (k.e1 * aw[0] + k.ka * g2[n]);
-    next[5] = inv * (k.e2 * aw[1] - k.kb * g1[n]);
-    next[6] = inv * (k.e3 * aw[2]);
-    next[7] = 0.0;
+    // Euler: I w' = (I w) x w + m g R (gamma x e3), lane by lane inv (e1 aw[0] + ka g2),
+    // inv (e2 aw[1] - kb g1), inv (e3 aw[2]), 0. ka g2 = (2 ka) s (the same real product, so
+    // the same rounding), one multiplication less on the way to the next row; lanes 2 and 3
+    // have no gravity term (x + 0 could turn a -0 into +0).
+    const V4 gyro = V4{k.e1, k.e2, k.e3, 0.0} * sums.aw;
+    const V4 euler = __builtin_shufflevector(gyro + V4{2.0 * k.ka, -2.0 * k.kb, 0.0, 0.0} * s, gyro, 0, 1, 6, 7);
+    row = {attitude_rate(sums.a1, sums.a2, sums.a3, half),  // q' = q (x) (0, w) / 2
+           V4{inv, inv, inv, inv} * euler};
+    store_row(row, c[n + 1]);
   }
 }
 
@@ -198,45 +264,19 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
   using namespace HEAVYTOP_CAT(ns_, HEAVYTOP_RECURRENCE_SUFFIX);
   Rows r;
   const double nutation = k.c_over_a * c[0][6];  // rad/s, C w3 / A
+  Row row = load_row(c[0]);
   for (int n = 0; n < p; ++n) {
-    arrange(r, c[n], n, false);
-    V4 a1 = {}, a2 = {}, ag = {};  // p v1, p v2 (lanes pw, px, py, pz); gamma's
-#if HEAVYTOP_RECURRENCE_WIDE
-    V8 a12 = {}, a3g = {};  // a3g's lower half (p w3) is not used: w3 is no variable here
-    auto term = [&](int j) {
-      a12 += r.qq[j] * r.w12[n - j];
-      a3g += r.qa[j] * r.w3b[n - j];
-    };
-    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
-    term(0);
-    if (n > 0) term(n);
-    a1 = V4{a12[0], a12[1], a12[2], a12[3]}, a2 = V4{a12[4], a12[5], a12[6], a12[7]};
-    ag = V4{a3g[4], a3g[5], a3g[6], a3g[7]};
-#else
-    auto term = [&](int j) {
-      const double* b = c[n - j];
-      a1 += r.q[j] * V4{b[4], b[4], b[4], b[4]};
-      a2 += r.q[j] * V4{b[5], b[5], b[5], b[5]};
-      ag += r.ga[j] * r.gb[n - j];
-    };
-    for (int j = 1; j < n; ++j) term(j);  // the products' order (recurrence_kernels.hpp)
-    term(0);
-    if (n > 0) term(n);
-#endif
-    g1[n] = 2.0 * (ag[0] - ag[2]);
-    g2[n] = 2.0 * (ag[1] + ag[3]);
+    arrange(r, row, n, false);
+    const Sums sums = sums_of<false>(r, c, row, n);  // p v1, p v2 (lanes pw, px, py, pz); gamma's
+    const V4 s = half_gamma(sums.ag), gamma = s + s;  // (g2, g1)
+    g2[n] = gamma[0], g1[n] = gamma[1];
     const double half = reciprocals.half[n], inv = reciprocals.inv[n];
-    const double* row = c[n];
-    double* next = c[n + 1];
-    // p' = p (x) (0, v1, v2, 0) / 2, as FactoredAttitudeTerms::rate
-    next[0] = -half * (a1[1] + a2[2]);
-    next[1] = half * (a1[0] - a2[3]);
-    next[2] = half * (a2[0] + a1[3]);
-    next[3] = half * (a2[1] - a1[2]);
-    next[4] = inv * (-nutation * row[5] + k.ka * g2[n]);
-    next[5] = inv * (nutation * row[4] - k.ka * g1[n]);
-    next[6] = 0.0;
-    next[7] = 0.0;
+    // inv (-nutation v2 + ka g2), inv (nutation v1 - ka g1), 0, 0 (ka g2 as (2 ka) s, above)
+    const V4 v = V4{-nutation, nutation, 0.0, 0.0} * __builtin_shufflevector(row.w, row.w, 1, 0, 2, 3) +
+                 V4{2.0 * k.ka, -2.0 * k.ka, 0.0, 0.0} * s;
+    row = {factored_attitude_rate(sums.a1, sums.a2, half),  // p' = p (x) (0, v1, v2, 0) / 2
+           V4{inv, inv, 0.0, 0.0} * __builtin_shufflevector(v, V4{}, 0, 1, 4, 5)};
+    store_row(row, c[n + 1]);
   }
 }
 
