@@ -1,6 +1,7 @@
 // The body's rules (SPEC section 1) and the frames and angles of SPEC section 2.
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -107,6 +108,28 @@ TEST(Frames, RatesOfTheAxisInvertTheAxisFrameRate) {
   const double h = 1e-6;
   const Eigen::Vector3d k_next = axis_frame(phi + h * phi_rate, theta + h * theta_rate).col(2);
   EXPECT_NEAR((k_next - k).norm() / h, k_rate.norm(), 1e-5);
+}
+
+// tilt_of_axis: asin below 45 degrees, atan2 above (frames.hpp). Against the tilt each axis was
+// built from, at any length of the axis, across the switch, near 0 and near the underflow guard:
+// within a few units in the last place of the tilt (the axis's own rounding is one of them).
+TEST(Frames, TiltOfAxisIsTheAngleFromTheVerticalAtEveryTiltAndLength) {
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  const double quarter = std::atan(1.0);
+  std::vector<double> tilts = {0.0, 1e-300, 1e-150, 1e-12, 1e-6, 0.05, 0.5, 1.0, 2.0, 3.0, 3.14159};
+  for (double d : {-1e-9, -1e-13, 0.0, 1e-13, 1e-9}) tilts.push_back(quarter + d);
+  for (int i = 1; i < 200; ++i) tilts.push_back(3.14159265 * i / 200.0);
+  for (double tilt : tilts)
+    for (double azimuth : {0.0, 0.7, 2.5, -1.9})
+      for (double length : {1.0, 3.7, 1e-3}) {
+        const double kx = length * std::sin(tilt) * std::cos(azimuth), ky = length * std::sin(tilt) * std::sin(azimuth);
+        const double kz = length * std::cos(tilt);
+        EXPECT_NEAR(tilt_of_axis(kx, ky, kz), tilt, 6.0 * kEps * tilt)
+            << "tilt " << tilt << ", azimuth " << azimuth << ", length " << length;
+      }
+  EXPECT_EQ(tilt_of_axis(0.0, 0.0, 1.0), 0.0);
+  EXPECT_EQ(tilt_of_axis(0.0, 0.0, -2.0), std::acos(-1.0));
+  EXPECT_NEAR(tilt_of_axis(1.0, 0.0, 0.0), 2.0 * quarter, kEps);
 }
 
 TEST(Frames, InitialRigidBodyStateFollowsSpec) {

@@ -38,9 +38,15 @@ AxisAngles axis_angles(const Eigen::Vector3d& k, const Eigen::Vector3d& k_rate);
 /// precision near the vertical, where acos loses half the digits.
 double tilt(double theta, double phi);
 
-/// rad, in [0, pi]: tilt() of the axis k itself, atan2(hypot(k_xi, k_eta), k_zeta) (k's fixed-frame
-/// components, dimensionless): what every tilt in heavytop is computed by.
+/// rad, in [0, pi]: tilt() of the axis k itself, the angle between k and the upward vertical
+/// (k's fixed-frame components, of any length: dimensionless): what every tilt in heavytop is
+/// computed by. Below 45 degrees asin(sqrt(h / (h + k_zeta^2))), h = k_xi^2 + k_eta^2 (a
+/// third of atan2's time here, and as precise: asin's condition there is at most 1.27);
+/// elsewhere, and where h is near underflow, atan2(hypot(k_xi, k_eta), k_zeta). The batch's
+/// tilt (integrators/batch/batch_kernel.hpp) is the same expression.
 inline double tilt_of_axis(double k_xi, double k_eta, double k_zeta) {
+  const double h = k_xi * k_xi + k_eta * k_eta, v = k_zeta * k_zeta;
+  if (k_zeta > 0.0 && h < v && h > 1e-280) return std::asin(std::sqrt(h / (h + v)));
   return std::atan2(std::hypot(k_xi, k_eta), k_zeta);
 }
 

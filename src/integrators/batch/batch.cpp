@@ -116,7 +116,7 @@ void scan(std::span<const Body> bodies, std::span<const InitialState> initials, 
     std::copy(x0.begin(), x0.end(), point.x0);
     const double qw = point.x0[0], qx = point.x0[1], qy = point.x0[2], qz = point.x0[3];
     const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
-    point.tilt0 = std::atan2(std::hypot(g1, g2), qw * qw - qx * qx - qy * qy + qz * qz);
+    point.tilt0 = tilt_of_axis(g1, g2, qw * qw - qx * qx - qy * qy + qz * qz);  // as taylor.cpp's tilt_of
     const double mgr = b.mgR();
     point.e1 = (b.B - b.C) / b.A, point.e2 = (b.C - b.A) / b.B, point.e3 = (b.A - b.B) / b.C;
     point.ka = mgr / b.A, point.kb = mgr / b.B;

@@ -191,10 +191,14 @@ inline void horner_pieces(const V* s, int stride, int p, const V* at, V* out) {
   for (int k = 0; k <= kPieces; ++k) out[k] = v[k];
 }
 
-// taylor.cpp's tilt_of: atan2(|k_horizontal|, k_zeta) of a (not normalised) quaternion.
+// taylor.cpp's tilt_of: frames.hpp's tilt_of_axis (here again: no heavytop header in this
+// file) of the axis of a (not normalised) quaternion.
 inline double tilt_of(double qw, double qx, double qy, double qz) {
   const double g1 = 2.0 * (qx * qz - qw * qy), g2 = 2.0 * (qy * qz + qw * qx);
-  return __builtin_atan2(__builtin_hypot(g1, g2), qw * qw - qx * qx - qy * qy + qz * qz);
+  const double g3 = qw * qw - qx * qx - qy * qy + qz * qz;
+  const double h = g1 * g1 + g2 * g2, v = g3 * g3;
+  if (g3 > 0.0 && h < v && h > 1e-280) return __builtin_asin(__builtin_sqrt(h / (h + v)));
+  return __builtin_atan2(__builtin_hypot(g1, g2), g3);
 }
 
 // Extremes false: the verdict only (exceeded and t_end, the same bits), without the tilt's

@@ -1,4 +1,5 @@
 #include "heavytop/dop853.hpp"
+#include "heavytop/frames.hpp"
 
 #include <algorithm>
 #include <array>
@@ -225,7 +226,7 @@ struct TiltOf {
     g1 = 2.0 * (qx * qz - qw * qy) * inv, g2 = 2.0 * (qy * qz + qw * qx) * inv;
     g3 = (qw * qw - qx * qx - qy * qy + qz * qz) * inv;
   }
-  double tilt() const { return std::atan2(std::hypot(g1, g2), g3); }
+  double tilt() const { return tilt_of_axis(g1, g2, g3); }
   double rate(const State& x) const { return g1 * x[5] - g2 * x[4]; }
 };
 

@@ -179,11 +179,11 @@ AxisAngles angles_of(const S& x) {
   return axis_angles(k, k_rate);
 }
 
-// Tilt acos(k_zeta), evaluated as atan2(|k_horizontal|, k_zeta): accurate near 0 as well.
+// Tilt acos(k_zeta), by the one tilt formula (frames.hpp): accurate near 0 as well.
 template <class S>
 double tilt_of(const S& x) {
   const Vertical g = vertical(x);  // (n1.zeta, n2.zeta, k.zeta), normalised
-  return std::atan2(std::hypot(g.g1, g.g2), g.g3);
+  return tilt_of_axis(g.g1, g.g2, g.g3);
 }
 
 // d(k_zeta)/dt = (v2 n1 - v1 n2).zeta.
