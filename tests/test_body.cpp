@@ -1,12 +1,15 @@
 // The body's rules (SPEC section 1) and the frames and angles of SPEC section 2.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "heavytop/body.hpp"
 #include "heavytop/frames.hpp"
+#include "heavytop/rigid_body.hpp"
 
 namespace heavytop {
 namespace {
@@ -130,6 +133,31 @@ TEST(Frames, TiltOfAxisIsTheAngleFromTheVerticalAtEveryTiltAndLength) {
   EXPECT_EQ(tilt_of_axis(0.0, 0.0, 1.0), 0.0);
   EXPECT_EQ(tilt_of_axis(0.0, 0.0, -2.0), std::acos(-1.0));
   EXPECT_NEAR(tilt_of_axis(1.0, 0.0, 0.0), 2.0 * quarter, kEps);
+}
+
+// from_vector: the rotation of q / |q| from q of any length (one division, frames of every
+// integrator's samples), against Eigen's own route (AngleAxis of the unit quaternion), and
+// axis_angles' theta (asin within 45 degrees of the upright, atan2 beyond) against the theta
+// the axis was built from.
+TEST(Frames, AttitudeOfAQuaternionOfAnyLengthAndThetaOfEveryAxis) {
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(std::sin(1.3 * i), std::cos(0.7 * i), std::sin(0.31 * i + 1)).normalized();
+    const Eigen::Quaterniond unit(Eigen::AngleAxisd(0.05 * i - 4.0, axis));
+    const Eigen::Matrix3d expected = Eigen::AngleAxisd(unit).toRotationMatrix();
+    for (double length : {1.0, 1.0 + 1e-7, 0.37, 12.0}) {
+      const RigidBodyState r = from_vector({length * unit.w(), length * unit.x(), length * unit.y(), length * unit.z(), 1, 2, 3});
+      EXPECT_LT((r.attitude - expected).cwiseAbs().maxCoeff(), 2e-15) << i << " " << length;
+      EXPECT_LT((r.attitude.transpose() * r.attitude - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 2e-15);
+    }
+  }
+  EXPECT_EQ(from_vector({0, 0, 0, 0, 1, 2, 3}).attitude, Eigen::Matrix3d::Identity());
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  for (int i = -300; i <= 300; ++i)
+    for (double phi : {0.0, 0.4, -1.2}) {
+      const double theta = 3.14159 * i / 300.0;
+      const AxisAngles a = axis_angles(axis_frame(phi, theta).col(2), Eigen::Vector3d::Zero());
+      EXPECT_NEAR(a.theta, theta, 8.0 * kEps * std::max(std::abs(theta), 1e-300)) << theta << " " << phi;
+    }
 }
 
 TEST(Frames, InitialRigidBodyStateFollowsSpec) {

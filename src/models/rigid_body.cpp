@@ -29,8 +29,19 @@ RigidBodyVector to_vector(const RigidBodyState& state) {
 }
 
 RigidBodyState from_vector(const RigidBodyVector& x) {
+  // R(q / |q|) from q itself: Eigen's toRotationMatrix() with 2 / |q|^2 for its 2, one
+  // division where normalizing first took a square root and four (a sample's cost, every
+  // integrator's). q = 0 gives the identity, as normalized() then did.
+  const double qw = x[0], qx = x[1], qy = x[2], qz = x[3];
+  const double n2 = qw * qw + qx * qx + qy * qy + qz * qz;
+  const double s = n2 > 0.0 ? 2.0 / n2 : 0.0;
+  const double tx = s * qx, ty = s * qy, tz = s * qz;
+  const double twx = tx * qw, twy = ty * qw, twz = tz * qw;
+  const double txx = tx * qx, txy = ty * qx, txz = tz * qx, tyy = ty * qy, tyz = tz * qy, tzz = tz * qz;
   RigidBodyState state;
-  state.attitude = Eigen::Quaterniond(x[0], x[1], x[2], x[3]).normalized().toRotationMatrix();
+  state.attitude << 1.0 - (tyy + tzz), txy - twz, txz + twy,  //
+      txy + twz, 1.0 - (txx + tzz), tyz - twx,                //
+      txz - twy, tyz + twx, 1.0 - (txx + tyy);
   state.omega = Eigen::Vector3d(x[4], x[5], x[6]);
   return state;
 }
