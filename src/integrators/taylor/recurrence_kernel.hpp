@@ -103,7 +103,7 @@ typedef double V8 __attribute__((vector_size(64)));
 // (a division is correctly rounded at compile time as at run time). constexpr, so that no
 // code of this file runs before the dispatch has chosen it: a constructor here was compiled
 // with this file's instruction set and ran at start-up on every processor (SIGILL without
-// AVX-512; tests/valgrind_start.sh runs the command where AVX-512 is absent).
+// AVX-512; tests/other_processors.sh runs the command where AVX-512 is absent).
 struct Reciprocals {
   double half[kM], inv[kM];
   constexpr Reciprocals() : half{}, inv{} {
@@ -198,6 +198,11 @@ inline Sums sums_of(const Rows& r, [[maybe_unused]] const double (*c)[8], [[mayb
     a3g += r.qa[j] * r.w3b[n - j];
     if constexpr (Gyro) aw += r.wa[j] * r.wb[n - j];
   };
+  for (int j = 1; j < n; ++j) term(j);
+  term(0);
+  if (n > 0) term(n);
+  a1 = __builtin_shufflevector(a12, a12, 0, 1, 2, 3), a2 = __builtin_shufflevector(a12, a12, 4, 5, 6, 7);
+  a3 = __builtin_shufflevector(a3g, a3g, 0, 1, 2, 3), ag = __builtin_shufflevector(a3g, a3g, 4, 5, 6, 7);
 #else
   // a's factors from row j, b's from row n - j: (q, ga, wa) and (w1 x4, w2 x4, w3 x4, gb, wb)
   auto add = [&](V4 q, V4 ga, V4 wa, V4 w1, V4 w2, V4 w3, V4 gb, V4 wb) {
@@ -208,27 +213,21 @@ inline Sums sums_of(const Rows& r, [[maybe_unused]] const double (*c)[8], [[mayb
     if constexpr (Gyro) aw += wa * wb;
   };
   auto splat = [](const double* b, int i) { return V4{b[i], b[i], b[i], b[i]}; };
+  // the gyroscopic factors, which arrange() forms for Plain only
+  auto wa = [&](int j) { return Gyro ? r.wa[j] : V4{}; };
+  auto wb = [&](int j) { return Gyro ? r.wb[j] : V4{}; };
   for (int j = 1; j < n; ++j) {
     const double* b = c[n - j];
-    add(r.q[j], r.ga[j], r.wa[j], splat(b, 4), splat(b, 5), splat(b, 6), r.gb[n - j], r.wb[n - j]);
+    add(r.q[j], r.ga[j], wa(j), splat(b, 4), splat(b, 5), splat(b, 6), r.gb[n - j], wb(n - j));
   }
   // j = 0 and j = n: row n's factors from its registers (`now`), not from the stores just made
   const V4 w = now.w;
-  add(r.q[0], r.ga[0], r.wa[0], __builtin_shufflevector(w, w, 0, 0, 0, 0), __builtin_shufflevector(w, w, 1, 1, 1, 1),
+  add(r.q[0], r.ga[0], wa(0), __builtin_shufflevector(w, w, 0, 0, 0, 0), __builtin_shufflevector(w, w, 1, 1, 1, 1),
       __builtin_shufflevector(w, w, 2, 2, 2, 2), __builtin_shufflevector(now.q, now.q, 3, 3, 2, 1),
       __builtin_shufflevector(w, w, 2, 0, 1, 3));
   if (n > 0)
     add(now.q, __builtin_shufflevector(now.q, now.q, 1, 2, 0, 0), __builtin_shufflevector(w, w, 1, 2, 0, 3), splat(c[0], 4),
-        splat(c[0], 5), splat(c[0], 6), r.gb[0], r.wb[0]);
-#endif
-#if HEAVYTOP_RECURRENCE_WIDE
-  for (int j = 1; j < n; ++j) term(j);
-  term(0);
-  if (n > 0) term(n);
-#endif
-#if HEAVYTOP_RECURRENCE_WIDE
-  a1 = __builtin_shufflevector(a12, a12, 0, 1, 2, 3), a2 = __builtin_shufflevector(a12, a12, 4, 5, 6, 7);
-  a3 = __builtin_shufflevector(a3g, a3g, 0, 1, 2, 3), ag = __builtin_shufflevector(a3g, a3g, 4, 5, 6, 7);
+        splat(c[0], 5), splat(c[0], 6), r.gb[0], wb(0));
 #endif
   return {a1, a2, a3, ag, aw};
 }
@@ -248,8 +247,9 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
     g2[n] = gamma[0], g1[n] = gamma[1];
     const double half = reciprocals.half[n], inv = reciprocals.inv[n];
     // Euler: I w' = (I w) x w + m g R (gamma x e3), lane by lane inv (e1 aw[0] + ka g2),
-    // inv (e2 aw[1] - kb g1), inv (e3 aw[2]), 0. ka g2 = (2 ka) s (the same real product, so
-    // the same rounding), one multiplication less on the way to the next row; lanes 2 and 3
+    // inv (e2 aw[1] - kb g1), inv (e3 aw[2]), 0. ka g2 = (2 ka) s: 2 ka and 2 s are exact, so
+    // it is the same real product and the same rounding (a finite run never nears overflow),
+    // one multiplication less on the way to the next row; lanes 2 and 3
     // have no gravity term (x + 0 could turn a -0 into +0).
     const V4 gyro = V4{k.e1, k.e2, k.e3, 0.0} * sums.aw;
     const V4 euler = __builtin_shufflevector(gyro + V4{2.0 * k.ka, -2.0 * k.kb, 0.0, 0.0} * s, gyro, 0, 1, 6, 7);
