@@ -354,6 +354,7 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+#ifndef HEAVYTOP_PEERS_LIBRARY  // paired.cpp includes this file for its methods
 int main(int argc, char** argv) {
   int reps = 15;
   const char* csv_path = nullptr;
@@ -481,3 +482,4 @@ int main(int argc, char** argv) {
   if (reference_file) std::fclose(reference_file);
   return 0;
 }
+#endif

@@ -19,6 +19,8 @@ if [ -f /usr/include/mujoco/mujoco.h ]; then mujoco=(-DHEAVYTOP_PEERS_MUJOCO -lm
   echo "MuJoCo rows: libmujoco-dev is not installed (scripts/install-deps.sh --peers)"; fi
 g++ -std=c++20 -O3 -DNDEBUG -I"$root/include" -I"$build/include" -I/usr/include/eigen3 "$here/peers.cpp" \
     "$build/libheavytop_core.a" -lgsl -lgslcblas -lfmt -lpthread "${mujoco[@]}" -o "$build/peers/peers"
+g++ -std=c++20 -O3 -DNDEBUG -I"$root/include" -I"$build/include" -I/usr/include/eigen3 "$here/paired.cpp" \
+    "$build/libheavytop_core.a" -lgsl -lgslcblas -lfmt -lpthread -o "$build/peers/paired"  # by hand: paired [ROUNDS]
 g++ -std=c++20 -O3 -DNDEBUG -I"$root/include" -I"$build/include" -I/usr/include/eigen3 "$here/maps.cpp" \
     "$build/libheavytop_core.a" -lgsl -lgslcblas -lfmt -lpthread -o "$build/peers/maps"
 echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
