@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
-#include <boost/math/tools/toms748_solve.hpp>
 #include <fmt/format.h>
 
 #include "heavytop/frames.hpp"
@@ -15,6 +13,7 @@
 
 #include "integrators/batch/batch.hpp"
 #include "integrators/integration.hpp"
+#include "integrators/taylor/series.hpp"
 
 namespace heavytop {
 
@@ -23,16 +22,7 @@ static_assert(detail::kBatchMaxOrder == kTaylorMaxOrder, "the batch kernel's jet
 // ---- Helpers the kernels call (baseline code) ---------------------------------------------------
 
 double detail::series_root(const double* s, int p, double a, double b, double fa, double fb, double h) {
-  // taylor.cpp's polynomial_root, to the same tolerance, so the roots are its roots.
-  auto value = [&](double tau) {
-    double v = s[p];
-    for (int n = p - 1; n >= 0; --n) v = v * tau + s[n];
-    return v;
-  };
-  std::uintmax_t iterations = 100;
-  const auto bracket = boost::math::tools::toms748_solve(
-      value, a, b, fa, fb, [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
-  return 0.5 * (bracket.first + bracket.second);
+  return detail::taylor::polynomial_root(s, p, a, b, fa, fb, h);  // taylor.cpp's roots
 }
 
 // The kernels' failures (batch.hpp), as the scalar Taylor integrator's.

@@ -50,8 +50,8 @@ struct BatchSettings {
   double band_low = 0.0;
 };
 
-// A root of the polynomial s[0..p] on [a, b] (s(a), s(b) of opposite signs): taylor.cpp's
-// polynomial_root (TOMS 748 to 1e-15 of the step h), compiled at the baseline.
+// A root of the polynomial s[0..p] on [a, b] (s(a), s(b) of opposite signs): the scalar scan's
+// polynomial_root (taylor/series.hpp, to 1e-15 of the step h), compiled at the baseline.
 double series_root(const double* s, int p, double a, double b, double fa, double fb, double h);
 
 // The unbatched integrator's failures, word for word.

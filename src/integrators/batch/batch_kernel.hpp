@@ -209,6 +209,8 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
   const double horizon = s.horizon, stop_above = s.stop_above;
   const bool threshold = stop_above < 3.141592653589793;  // a tilt above pi cannot be reached
   const double cos_stop = __builtin_cos(stop_above);
+  const double half_stop = __builtin_sin(0.5 * stop_above);
+  const double one_minus_cos_stop = 2.0 * half_stop * half_stop;  // taylor.cpp's, without cancellation
   const double inv_pm1 = -1.0 / (p - 1), inv_p = -1.0 / p;
   const Reciprocals reciprocals;
   // The band (batch_tilt_bands): k_zeta - cos(stop_above) below this means a tilt above band_low.
@@ -343,17 +345,22 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
         w.rate[n] = r1 - r2;
       }
     }
-    // The four Cauchy squares in one loop (four independent chains instead of four loops of one;
-    // each sum in the same order as cauchy(), so the same bits).
+    // k_zeta as 1 - 2 (qx^2 + qy^2) (|q|^2's series is 1), each square by its symmetry: taylor.cpp's
+    // -2 sum_of_squares(qx, qy, n) (taylor/series.hpp), its operations in its order.
     for (int n = 0; n <= p; ++n) {
-      V s0 = {}, s1 = {}, s2 = {}, s3 = {};
-      for (int j = 0; j <= n; ++j) {
+      V sx = {}, sy = {};
+      for (int j = 0; 2 * j < n; ++j) {
         const V *a = w.c[j], *b = w.c[n - j];
-        s0 += a[0] * b[0], s1 += a[1] * b[1], s2 += a[2] * b[2], s3 += a[3] * b[3];
+        sx += a[1] * b[1], sy += a[2] * b[2];
       }
-      w.kz[n] = s0 - s1 - s2 + s3;
+      V sum = (sx + sy) * 2.0;
+      if (n % 2 == 0) {
+        const V* m = w.c[n / 2];
+        sum += m[1] * m[1] + m[2] * m[2];
+      }
+      w.kz[n] = -2.0 * sum;
     }
-    w.kz[0] -= cos_stop;
+    w.kz[0] += one_minus_cos_stop;
 
     V h = {};
     for (int l = 0; l < W; ++l) h[l] = active[l] ? t[l] - t_old[l] : 0.0;

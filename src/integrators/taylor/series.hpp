@@ -97,6 +97,17 @@ inline double cauchy(const Coefficients& a, const Coefficients& b, int n) {
   return s;
 }
 
+// The n-th coefficient of a^2 + b^2, each square by its symmetry: a[j] a[n - j] once for
+// j < n - j and doubled, the middle term a[n/2]^2 once (half the products of cauchy(a, a, n)).
+// The batch's kernel forms it in the same order (integrators/batch/batch_kernel.hpp).
+inline double sum_of_squares(const Coefficients& a, const Coefficients& b, int n) {
+  double sa = 0.0, sb = 0.0;
+  for (int j = 0; 2 * j < n; ++j) sa += a[j] * a[n - j], sb += b[j] * b[n - j];
+  double s = (sa + sb) * 2.0;
+  if (n % 2 == 0) s += a[n / 2] * a[n / 2] + b[n / 2] * b[n / 2];
+  return s;
+}
+
 // s(tau) by Horner's rule.
 inline double horner(const Coefficients& s, int p, double tau) {
   double v = s[p];
@@ -140,6 +151,32 @@ double root(F f, double a, double b, double fa, double fb, double h) {
   const auto bracket = boost::math::tools::toms748_solve(
       f, a, b, fa, fb, [h](double lo, double hi) { return std::abs(hi - lo) <= 1e-15 * h; }, iterations);
   return 0.5 * (bracket.first + bracket.second);
+}
+
+// A root of the polynomial s[0..p] on [a, b] where s(a), s(b) have opposite signs, to ~1e-15
+// of the step h: Newton's method from the secant's point, the value and the slope in one Horner
+// pass, each iterate kept inside the bracket that the signs shrink (bisection where Newton's
+// step would leave it). A simple root takes 3-4 passes, where TOMS 748 (root()) took about 10
+// values; a multiple one converges linearly, still inside the bracket. The scan's events
+// (taylor.cpp) and the batch's (integrators/batch/) both solve here: the same roots.
+inline double polynomial_root(const double* s, int p, double a, double b, double fa, double fb, double h) {
+  const double tolerance = 1e-15 * h;
+  const bool negative_at_a = fa < 0.0;
+  double x = a + (b - a) * (fa / (fa - fb));
+  if (!(x > a && x < b)) x = 0.5 * (a + b);
+  for (int pass = 0; pass < 200; ++pass) {
+    double f = s[p], slope = 0.0;
+    for (int n = p - 1; n >= 0; --n) slope = slope * x + f, f = f * x + s[n];
+    if (f == 0.0) return x;
+    ((f < 0.0) == negative_at_a ? a : b) = x;
+    const double step = f / slope;
+    if (std::abs(step) <= tolerance) return x - step;
+    double next = x - step;
+    if (!(next > a && next < b)) next = 0.5 * (a + b);
+    if (!(b - a > tolerance)) return next;
+    x = next;
+  }
+  return x;
 }
 
 }  // namespace heavytop::detail::taylor

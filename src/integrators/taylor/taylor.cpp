@@ -54,16 +54,12 @@ double tilt_of(const State& x) {
   return tilt_of_axis(g1, g2, qw * qw - qx * qx - qy * qy + qz * qz);  // |(g1, g2)| = sin(tilt), as |(k_xi, k_eta)|
 }
 
-// A root of the polynomial s on [a, b] where s(a), s(b) have opposite signs, to ~1e-15 of
-// the step (TOMS 748; the polynomial is cheap, so it is solved to rounding).
-double polynomial_root(const Coefficients& s, int p, double a, double b, double fa, double fb, double h) {
-  return root([&](double tau) { return horner(s, p, tau); }, a, b, fa, fb, h);
-}
-
 // A step's events on its own series, the Taylor integrator's capability in the one tilt scan
 // (tilt_scan.hpp): the series of d(k_zeta)/dt = gamma_1 u_2 - gamma_2 u_1 and of
-// k_zeta - cos(stop_above) = qw^2 - qx^2 - qy^2 + qz^2 - cos(stop_above) to order p (gamma to
-// order p first: the recurrence stopped at p - 1), their sign changes in 8 pieces of the step,
+// k_zeta - cos(stop_above) to order p (gamma to order p first: the recurrence stopped at p - 1),
+// k_zeta = qw^2 - qx^2 - qy^2 + qz^2 taken as 1 - 2 (qx^2 + qy^2): |q| = 1 at the step's start,
+// and every set's attitude rate q (x) (0, w) / 2 keeps |q|^2, so its series is 1 order by order
+// (to rounding); two squares instead of four. Their sign changes in 8 pieces of the step,
 // each root by TOMS 748 on the polynomial. An extremum before the crossing is noted, then the
 // crossing itself, which ends the scan; without one, the step's end.
 template <class System>
@@ -73,7 +69,7 @@ class SeriesEvents {
 
   explicit SeriesEvents(double stop_above)
       : threshold_(stop_above < 3.141592653589793),  // a tilt above pi cannot be reached
-        cos_stop_(std::cos(stop_above)) {}
+        one_minus_cos_stop_(2.0 * std::sin(0.5 * stop_above) * std::sin(0.5 * stop_above)) {}
 
   double operator()(Integrator& integrator, double t0, double /*t1*/, TiltRecord& record) {
     const int p = integrator.order();
@@ -87,18 +83,18 @@ class SeriesEvents {
     g_.g2[p] = 2.0 * (cauchy(q[2], q[3], p) + cauchy(q[0], q[1], p));
     for (int n = 0; n <= p; ++n) {
       rate_[n] = cauchy(g_.g1, u2, n) - cauchy(g_.g2, u1, n);
-      kz_[n] = cauchy(q[0], q[0], n) - cauchy(q[1], q[1], n) - cauchy(q[2], q[2], n) + cauchy(q[3], q[3], n);
+      kz_[n] = -2.0 * sum_of_squares(q[1], q[2], n);
     }
-    kz_[0] -= cos_stop_;  // k_zeta - cos(stop): negative once the tilt passes stop_above
+    kz_[0] += one_minus_cos_stop_;  // k_zeta - cos(stop): negative once the tilt passes stop_above
 
     constexpr int kPieces = 8;
     double a = 0.0, ra = horner(rate_, p, 0.0), ka = horner(kz_, p, 0.0);
     for (int k = 1; k <= kPieces; ++k) {
       const double b = h * k / kPieces, rb = horner(rate_, p, b), kb = horner(kz_, p, b);
       double crossing = -1.0;
-      if (threshold_ && ka >= 0.0 && kb < 0.0) crossing = polynomial_root(kz_, p, a, b, ka, kb, h);
+      if (threshold_ && ka >= 0.0 && kb < 0.0) crossing = polynomial_root(kz_.data(), p, a, b, ka, kb, h);
       if ((ra < 0.0 && rb > 0.0) || (ra > 0.0 && rb < 0.0)) {
-        const double extremum = polynomial_root(rate_, p, a, b, ra, rb, h);
+        const double extremum = polynomial_root(rate_.data(), p, a, b, ra, rb, h);
         if (crossing < 0.0 || extremum < crossing) {
           integrator.interpolate(t0 + extremum, y_);
           record.note(t0 + extremum, tilt_of(y_));
@@ -118,7 +114,7 @@ class SeriesEvents {
 
  private:
   bool threshold_;
-  double cos_stop_;
+  double one_minus_cos_stop_;  // 2 sin^2(stop / 2): no cancellation at a small stop_above
   Coefficients rate_{}, kz_{};
   Gamma g_;
   typename Integrator::State y_;
