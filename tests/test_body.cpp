@@ -135,6 +135,28 @@ TEST(Frames, TiltOfAxisIsTheAngleFromTheVerticalAtEveryTiltAndLength) {
   EXPECT_NEAR(tilt_of_axis(1.0, 0.0, 0.0), 2.0 * quarter, kEps);
 }
 
+// azimuth_of_axis (asin in each octant) against std::atan2 at every direction, lengths down to
+// near underflow, the octants' borders, and SPEC's (-pi, pi] where atan2 gives -pi (a -0 k_eta).
+TEST(Frames, AzimuthOfAxisIsAtan2InEveryOctant) {
+  constexpr double kEps = std::numeric_limits<double>::epsilon(), kPi = 3.141592653589793;
+  std::vector<double> angles;
+  for (int i = -1000; i <= 1000; ++i) angles.push_back(kPi * i / 1000.0 * (1.0 - 1e-12));
+  for (int k = -3; k <= 4; ++k)
+    for (double d : {-1e-12, 0.0, 1e-12}) angles.push_back(kPi * k / 4.0 + d);
+  for (double angle : angles)
+    for (double length : {1.0, 0.3, 2e-140, 7.0}) {
+      const double kx = length * std::cos(angle), ky = length * std::sin(angle);
+      EXPECT_NEAR(azimuth_of_axis(kx, ky), std::atan2(ky, kx), 4.0 * kEps * std::max(std::abs(angle), 1.0))
+          << "angle " << angle << ", length " << length;
+    }
+  EXPECT_EQ(azimuth_of_axis(0.0, 0.0), 0.0);
+  EXPECT_EQ(azimuth_of_axis(-1.0, 0.0), kPi);
+  EXPECT_EQ(azimuth_of_axis(-1.0, -0.0), kPi);  // atan2 gives -pi here, outside (-pi, pi]
+  EXPECT_EQ(azimuth_of_axis(0.0, 2.0), kPi / 2);
+  EXPECT_EQ(azimuth_of_axis(0.0, -2.0), -kPi / 2);
+  EXPECT_NEAR(azimuth_of_axis(-1e-160, 1e-160), 0.75 * kPi, kEps);  // near underflow: atan2's route
+}
+
 // from_vector: the rotation of q / |q| from q of any length (one division, frames of every
 // integrator's samples), against Eigen's own route (AngleAxis of the unit quaternion), and
 // axis_angles' theta (asin within 45 degrees of the upright, atan2 beyond) against the theta

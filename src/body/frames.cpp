@@ -71,7 +71,7 @@ double tilt(double theta, double phi) { return tilt_of(axis_of(theta, phi)); }
 
 double azimuth(double theta, double phi) {
   const Axis k = axis_of(theta, phi);
-  return std::atan2(k.eta, k.xi);  // atan2(0, 0) = 0
+  return azimuth_of_axis(k.xi, k.eta);
 }
 
 double ContinuousAzimuth::operator()(double theta, double phi) {
@@ -81,7 +81,7 @@ double ContinuousAzimuth::operator()(double theta, double phi) {
 
 double ContinuousAzimuth::of_axis(double k_xi, double k_eta) {
   if (k_xi == 0.0 && k_eta == 0.0) return previous_;  // vertical: no direction, keep the last one (0 at first)
-  const double wrapped = std::atan2(k_eta, k_xi);
+  const double wrapped = azimuth_of_axis(k_xi, k_eta);
   if (!started_) {
     started_ = true;
     return previous_ = wrapped;
