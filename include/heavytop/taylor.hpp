@@ -76,7 +76,8 @@ Trajectory simulate_taylor(const Body& body, const InitialState& initial, const 
 
 /// tilt_extremes() by the Taylor method: the tilt extrema are the roots of the series of
 /// d(k_zeta)/dt on each step, the threshold crossing (tilt = stop_above, rad) the root of the
-/// series of k_zeta - cos(stop_above); both found by TOMS 748 on the polynomial, in a step
+/// series of k_zeta - cos(stop_above); both found by Newton's method on the polynomial (kept
+/// inside the root's bracket, to 1e-15 of the step), in a step
 /// split into 8 pieces to isolate them (two roots in one piece of 1/8 step would be missed).
 /// The same contract as tilt_extremes(): when the scan stops early, t_end, t_max and max_tilt
 /// are the crossing's (max_tilt == stop_above to rounding). Same keys ("horizon", "max_tilt")

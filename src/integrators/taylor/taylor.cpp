@@ -59,9 +59,9 @@ double tilt_of(const State& x) {
 // k_zeta - cos(stop_above) to order p (gamma to order p first: the recurrence stopped at p - 1),
 // k_zeta = qw^2 - qx^2 - qy^2 + qz^2 taken as 1 - 2 (qx^2 + qy^2): |q| = 1 at the step's start,
 // and every set's attitude rate q (x) (0, w) / 2 keeps |q|^2, so its series is 1 order by order
-// (to rounding); two squares instead of four. Their sign changes in 8 pieces of the step,
-// each root by TOMS 748 on the polynomial. An extremum before the crossing is noted, then the
-// crossing itself, which ends the scan; without one, the step's end.
+// (to rounding); two squares instead of four. Their sign changes in 8 pieces of the step, each
+// root by Newton in its bracket (polynomial_root). An extremum before the crossing is noted,
+// then the crossing itself, which ends the scan; without one, the step's end.
 template <class System>
 class SeriesEvents {
  public:
