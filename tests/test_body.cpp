@@ -135,7 +135,7 @@ TEST(Frames, TiltOfAxisIsTheAngleFromTheVerticalAtEveryTiltAndLength) {
   EXPECT_NEAR(tilt_of_axis(1.0, 0.0, 0.0), 2.0 * quarter, kEps);
 }
 
-// azimuth_of_axis (asin in each octant) against std::atan2 at every direction, lengths down to
+// azimuth_of_axis (atan2_in_octant) against std::atan2 at every direction, lengths down to
 // near underflow, the octants' borders, and SPEC's (-pi, pi] where atan2 gives -pi (a -0 k_eta).
 TEST(Frames, AzimuthOfAxisIsAtan2InEveryOctant) {
   constexpr double kEps = std::numeric_limits<double>::epsilon(), kPi = 3.141592653589793;
@@ -159,7 +159,7 @@ TEST(Frames, AzimuthOfAxisIsAtan2InEveryOctant) {
 
 // from_vector: the rotation of q / |q| from q of any length (one division, frames of every
 // integrator's samples), against Eigen's own route (AngleAxis of the unit quaternion), and
-// axis_angles' theta (asin within 45 degrees of the upright, atan2 beyond) against the theta
+// axis_angles' theta (atan2_in_octant, every octant) against the theta
 // the axis was built from.
 TEST(Frames, AttitudeOfAQuaternionOfAnyLengthAndThetaOfEveryAxis) {
   for (int i = 0; i < 200; ++i) {

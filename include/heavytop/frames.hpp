@@ -53,22 +53,28 @@ inline double tilt_of_axis(double k_xi, double k_eta, double k_zeta) {
 /// rad, in (-pi, pi]: the direction the axis leans to, atan2(k_eta, k_xi) (0 for a vertical axis).
 double azimuth(double theta, double phi);
 
-/// rad, in (-pi, pi]: azimuth() of the axis k from its horizontal components (of any length:
-/// dimensionless), atan2(k_eta, k_xi) as asin of the smaller component over |(k_xi, k_eta)|
-/// placed in its octant (half of atan2's time, and as precise: asin's argument is at most
-/// 1/sqrt(2), its condition at most 1.27, the tilt's rule); 0 for (0, 0), and pi, not -pi, on
-/// the negative xi axis whatever the sign of a zero k_eta. Near underflow, atan2 itself.
-inline double azimuth_of_axis(double k_xi, double k_eta) {
+/// rad, in (-pi, pi]: atan2(y, x) given r = |(x, y)| > 0 (which its callers need anyway), as
+/// asin of the smaller component over r placed in its octant: half of atan2's time, and as
+/// precise (asin's argument is at most 1/sqrt(2), its condition at most 1.27, the tilt's rule);
+/// pi, not -pi, for x < 0 and a zero y of either sign. The angles of axis_angles() and
+/// azimuth_of_axis() (r from underflow's edge up: they take atan2 below 1e-140).
+inline double atan2_in_octant(double y, double x, double r) {
   constexpr double kPi = 3.141592653589793, kHalfPi = 1.5707963267948966;
+  if (std::abs(y) <= std::abs(x)) {
+    const double a = std::asin(y / r);  // in [-pi/4, pi/4]
+    return x > 0.0 ? a : (y < 0.0 ? -kPi - a : kPi - a);
+  }
+  const double b = std::asin(x / r);
+  return y > 0.0 ? kHalfPi - b : b - kHalfPi;
+}
+
+/// rad, in (-pi, pi]: azimuth() of the axis k from its horizontal components (of any length:
+/// dimensionless), atan2(k_eta, k_xi) by atan2_in_octant; 0 for (0, 0), and pi, not -pi, on
+/// the negative xi axis whatever the sign of a zero k_eta.
+inline double azimuth_of_axis(double k_xi, double k_eta) {
   const double h = k_xi * k_xi + k_eta * k_eta;
   if (!(h > 1e-280)) return k_xi == 0.0 && k_eta == 0.0 ? 0.0 : std::atan2(k_eta, k_xi);
-  const double r = std::sqrt(h);
-  if (std::abs(k_eta) <= std::abs(k_xi)) {
-    const double a = std::asin(k_eta / r);  // in [-pi/4, pi/4]
-    return k_xi > 0.0 ? a : (k_eta < 0.0 ? -kPi - a : kPi - a);
-  }
-  const double b = std::asin(k_xi / r);
-  return k_eta > 0.0 ? kHalfPi - b : b - kHalfPi;
+  return atan2_in_octant(k_eta, k_xi, std::sqrt(h));
 }
 
 /// The people's columns of every trajectory (SPEC section 2): they follow SPEC's five, in

@@ -27,11 +27,8 @@ AxisAngles axis_angles(const Eigen::Vector3d& k, const Eigen::Vector3d& k_rate) 
   AxisAngles a;
   const double horizontal2 = k.x() * k.x() + k.z() * k.z();  // cos^2 phi
   const double cos_phi = std::sqrt(horizontal2);
-  // theta = atan2(k_xi, k_zeta); within 45 degrees of k_zeta > 0 as asin(k_xi / cos phi), a
-  // third of atan2's time with the square root shared (asin's condition there <= 1.27; the
-  // tilt's rule, frames.hpp).
-  const bool near = k.z() > 0.0 && k.x() * k.x() < k.z() * k.z() && horizontal2 > 1e-280;
-  a.theta = near ? std::asin(k.x() / cos_phi) : std::atan2(k.x(), k.z());
+  // theta = atan2(k_xi, k_zeta), by asin in its octant with the square root shared (frames.hpp)
+  a.theta = horizontal2 > 1e-280 ? atan2_in_octant(k.x(), k.z(), cos_phi) : std::atan2(k.x(), k.z());
   a.phi = -std::asin(std::clamp(k.y(), -1.0, 1.0));
   // phi' = -k_eta' / cos phi;  theta' = (k_zeta k_xi' - k_xi k_zeta') / (k_xi^2 + k_zeta^2).
   if (horizontal2 > 0.0) {
