@@ -1,7 +1,11 @@
 // The body's rules (SPEC section 1) and the frames and angles of SPEC section 2.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <numbers>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -155,6 +159,31 @@ TEST(Frames, AzimuthOfAxisIsAtan2InEveryOctant) {
   EXPECT_EQ(azimuth_of_axis(0.0, 2.0), kPi / 2);
   EXPECT_EQ(azimuth_of_axis(0.0, -2.0), -kPi / 2);
   EXPECT_NEAR(azimuth_of_axis(-1e-160, 1e-160), 0.75 * kPi, kEps);  // near underflow: atan2's route
+}
+
+// ContinuousAzimuth keeps the last multiple of 2 pi while it fits (frames.cpp): every sample the
+// same bits as SPEC's rule, the wrapped azimuth plus 2 pi round((previous - wrapped) / 2 pi),
+// over walks of small, large (near pi) and huge steps, through many turns, and at zero.
+TEST(Frames, ContinuousAzimuthIsTheRoundingRuleBitForBit) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  std::mt19937_64 random(31);
+  for (double largest : {0.1, 3.0, 3.2, 40.0}) {
+    std::uniform_real_distribution<double> step(-largest, largest);
+    ContinuousAzimuth continuous;
+    double angle = 0.0, previous = 0.0;
+    bool started = false;
+    for (int i = 0; i < 20000; ++i) {
+      angle += (i % 500 == 7) ? 0.0 : step(random) + 0.05;  // drifts through many turns
+      const double kx = i % 997 == 3 ? 1.0 : std::cos(angle), ky = i % 997 == 3 ? -0.0 : std::sin(angle);
+      const double wrapped = azimuth_of_axis(kx, ky);
+      const double expected = started ? wrapped + kTwoPi * std::round((previous - wrapped) / kTwoPi) : wrapped;
+      started = true;
+      const double got = continuous.of_axis(kx, ky);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(got), std::bit_cast<std::uint64_t>(expected))
+          << "largest step " << largest << ", sample " << i;
+      previous = expected;
+    }
+  }
 }
 
 // from_vector: the rotation of q / |q| from q of any length (one division, frames of every

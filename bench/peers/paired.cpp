@@ -1,10 +1,10 @@
 // heavytop's Taylor integrator against GSL rk8pd and Boost.Odeint on peers.cpp's asymmetric
-// body, in paired rounds: each round runs every method once, each timed run after an untimed
-// one, and the median of the per-round ratios (peer / heavytop) is printed beside the median
-// times. Where the machine's speed drifts (the project's VM has slow and fast phases that do not
-// slow every method alike), the paired ratio is steadier than a ratio of medians. The
-// tolerances are those peers.cpp's calibration at equal error chose (its table of 2026-12-06);
-// recalibrate there if a method changes. Built by run.sh; by hand: build/peers/paired [ROUNDS].
+// body, in paired rounds: each round runs every method once, each timed run after 1 ms of
+// untimed ones (peers.cpp's warm_up), and the median of the per-round ratios (peer / heavytop)
+// is printed beside the median times. Where the machine's speed drifts, the paired ratio is
+// steadier than a ratio of medians. The tolerances are those peers.cpp's calibration at equal
+// error chose (its table of 2026-12-06); recalibrate there if a method changes. Built by
+// run.sh; by hand: build/peers/paired [ROUNDS].
 #define HEAVYTOP_PEERS_LIBRARY
 #include "peers.cpp"
 
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       std::vector<double> now(methods.size());
       for (std::size_t m = 0; m < methods.size(); ++m) {
         const double tol = methods[m].tolerance[level];
-        methods[m].run(p, tol);
+        warm_up([&] { methods[m].run(p, tol); });
         const double t0 = cpu_seconds();
         const Output out = methods[m].run(p, tol);
         now[m] = (cpu_seconds() - t0) * 1e6;

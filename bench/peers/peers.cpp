@@ -352,6 +352,20 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// Untimed runs of a method before its timed one, until 1 ms of CPU time has gone into them (at
+// least one run): each method then starts warm, with its code and data in the caches, not those
+// of the method before it, and with the processor's vector units in the state its own code
+// leaves them. The last matters for code with 256-bit instructions (heavytop's AVX2
+// recurrence): on this VM they ran 2.2-2.8x slower for the first ~250 us after more than ~1 ms
+// without any (docs/performance.md, "The wide units' warm-up"), while code without them (GSL,
+// Odeint as compiled here) was not slowed. One warm-up run was not enough for a 44 us run.
+template <class Run>
+void warm_up(const Run& run) {
+  const double start = cpu_seconds();
+  do run();
+  while (cpu_seconds() - start < 1e-3);
+}
+
 }  // namespace
 
 #ifndef HEAVYTOP_PEERS_LIBRARY  // paired.cpp includes this file for its methods
@@ -438,15 +452,13 @@ int main(int argc, char** argv) {
               break;
             }
       }
-      // Time, interleaved. Each timed run follows an untimed one of the same method, so that
-      // every method starts with its code and data in the caches, not those of the method
-      // before it (a run of more than 50 ms, whose start-up is a small part of it, is not
-      // repeated).
+      // Time, interleaved. Each timed run follows untimed ones of the same method (warm_up; a
+      // run of more than 50 ms, whose start-up is a small part of it, is not repeated).
       std::vector<std::vector<double>> times(methods.size());
       for (int r = 0; r < reps; ++r)
         for (std::size_t m = 0; m < methods.size(); ++m) {
           if (tol[m] == 0.0) continue;
-          if (times[m].empty() || times[m].back() < 5e4) methods[m].run(p, tol[m]);
+          if (times[m].empty() || times[m].back() < 5e4) warm_up([&] { methods[m].run(p, tol[m]); });
           const double t0 = cpu_seconds();
           const Output a = methods[m].run(p, tol[m]);
           const double t1 = cpu_seconds();

@@ -95,6 +95,7 @@ class ContinuousAzimuth {
 
  private:
   double previous_ = 0.0;
+  double turns_ = 0.0;  // the multiple of 2 pi previous_ was given
   bool started_ = false;
 };
 

@@ -84,7 +84,14 @@ double ContinuousAzimuth::of_axis(double k_xi, double k_eta) {
     return previous_ = wrapped;
   }
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  return previous_ = wrapped + kTwoPi * std::round((previous_ - wrapped) / kTwoPi);
+  // The last sample's multiple of 2 pi, while it brings this one within 3 rad of the last: then
+  // (previous - wrapped) / 2 pi lies within 3 / (2 pi) = 0.48 of it and round() gives it too (the
+  // same bits, without a division and round() a sample; a zero azimuth takes round()'s way,
+  // for the sign of its zero).
+  const double kept = wrapped + kTwoPi * turns_;
+  if (std::abs(kept - previous_) < 3.0 && wrapped != 0.0) return previous_ = kept;
+  turns_ = std::round((previous_ - wrapped) / kTwoPi);
+  return previous_ = wrapped + kTwoPi * turns_;
 }
 
 void insert_axis_direction_columns(Trajectory& part, ContinuousAzimuth& continuous) {

@@ -265,11 +265,14 @@ double first_step_guess(const State& x, const State& dxdt, const Tolerances& o, 
 inline constexpr std::size_t kStepsPerProgress = 64;
 
 // Steps a dense-output integrator (time(), step()) until it has passed t, calling `progress`
-// every kStepsPerProgress steps too, so that a caller can stop a long run between samples.
+// every kStepsPerProgress steps too, so that a caller can stop a long run between samples. An
+// integrator whose step can take the time it is heading for (step(t): the Taylor integrator,
+// which then evaluates its series there along with the step's end) is told it.
 template <class Integrator>
 void advance_to(Integrator& integrator, double t, const Progress& progress) {
   for (std::size_t steps = 1; integrator.time() < t; ++steps) {
-    integrator.step();
+    if constexpr (requires { integrator.step(t); }) integrator.step(t);
+    else integrator.step();
     if (progress && steps % kStepsPerProgress == 0) progress(std::min(t, integrator.time()));
   }
 }

@@ -61,8 +61,11 @@ class TaylorIntegrator {
   const Gamma& gamma() const { return gamma_; }
 
   // One step from time(): the series at time(), its step, the state at its end. Afterwards
-  // interpolate() covers [previous_time(), time()] from the same series.
-  void step() {
+  // interpolate() covers [previous_time(), time()] from the same series. Given the time
+  // `ahead` the caller will interpolate at next (the sample loop's), a step that passes it
+  // evaluates its series there in the same Horner pass as its end (horner_pair: the same bits,
+  // the two chains of dependent multiply-adds overlapped), and interpolate(ahead) reads that.
+  void step(double ahead = -1.0) {
     if (steps_ >= max_steps_) fail("taylor", StepOutcome::MaxSteps, t_, max_steps_);
     normalise();
     for (int i = 0; i < N; ++i) jet_.c[0][i] = x_[i];
@@ -95,7 +98,15 @@ class TaylorIntegrator {
     t_old_ = t_;
     h_ = h;
     double end[W];
-    horner(jet_, order_, h, end);
+    const double tau = ahead - t_old_;  // as interpolate(ahead) forms it
+    ahead_ = tau > 0.0 && tau < h ? ahead : -1.0;
+    if (ahead_ >= 0.0) {
+      double at[W];
+      horner_pair(jet_, order_, h, tau, end, at);
+      std::copy(at, at + N, x_ahead_.begin());
+    } else {
+      horner(jet_, order_, h, end);
+    }
     std::copy(end, end + N, x_.begin());
     t_ = (h == left) ? horizon_ : t_old_ + h;
     ++steps_;
@@ -109,8 +120,8 @@ class TaylorIntegrator {
 
   // The state at t in [previous_time(), time()], from the series.
   void interpolate(double t, State& out) const {
-    if (t == t_) {
-      out = x_;
+    if (t == t_ || t == ahead_) {
+      out = t == t_ ? x_ : x_ahead_;
       return;
     }
     double at[W];
@@ -192,6 +203,8 @@ class TaylorIntegrator {
   Gamma gamma_;
   State x_;
   double t_ = 0.0, t_old_ = 0.0, h_ = 0.0;
+  double ahead_ = -1.0;  // s, a time inside the last step where the state is x_ahead_ (-1: none)
+  State x_ahead_;
 };
 
 }  // namespace heavytop::detail::taylor

@@ -127,6 +127,23 @@ inline void horner(const JetOf<W>& x, int p, double tau, double* out) {
   for (int i = 0; i < kPairs; ++i) std::memcpy(out + 2 * i, &v[i], sizeof v[i]);
 }
 
+// Every variable of the jet at two points at once, tau_a and tau_b: horner()'s two passes with
+// their chains interleaved, so that each hides the latency of the other's multiply-adds. The
+// same operations in the same order per point: the same bits as two horner() calls.
+template <int W>
+inline void horner_pair(const JetOf<W>& x, int p, double tau_a, double tau_b, double* out_a, double* out_b) {
+  constexpr int kPairs = W / 2;
+  v2d a[kPairs], b[kPairs];
+  for (int i = 0; i < kPairs; ++i) a[i] = b[i] = load2(&x.c[p][2 * i]);
+  const v2d ta = splat(tau_a), tb = splat(tau_b);
+  for (int n = p - 1; n >= 0; --n)
+    for (int i = 0; i < kPairs; ++i) {
+      const v2d c = load2(&x.c[n][2 * i]);
+      a[i] = a[i] * ta + c, b[i] = b[i] * tb + c;
+    }
+  for (int i = 0; i < kPairs; ++i) std::memcpy(out_a + 2 * i, &a[i], sizeof a[i]), std::memcpy(out_b + 2 * i, &b[i], sizeof b[i]);
+}
+
 // Variable i of the jet at tau (Horner).
 template <int W>
 inline double horner(const JetOf<W>& x, int i, int p, double tau) {
