@@ -105,16 +105,20 @@ typedef double V8 __attribute__((vector_size(64)));
 // with this file's instruction set and ran at start-up on every processor (SIGILL without
 // AVX-512; tests/other_processors.sh runs the command where AVX-512 is absent).
 struct Reciprocals {
-  double half[kM], inv[kM];
+  double half[kM][4], inv[kM];  // half as (-half, half, half, half), the attitude's signs: one load
   constexpr Reciprocals() : half{}, inv{} {
-    for (int n = 0; n < kM; ++n) half[n] = 0.5 / (n + 1), inv[n] = 1.0 / (n + 1);
+    for (int n = 0; n < kM; ++n) {
+      const double h = 0.5 / (n + 1);
+      half[n][0] = -h, half[n][1] = h, half[n][2] = h, half[n][3] = h, inv[n] = 1.0 / (n + 1);
+    }
   }
 };
 constexpr Reciprocals reciprocals;
 
 // Row n of the jet rearranged for the products of order >= n: the quaternion q, and the
 // vertical's and the gyroscopic products' factors in lane order,
-//   gamma: (qx, qy, qw, qw) x (qz, qz, qy, qx) -> (qx qz, qy qz, qw qy, qw qx)
+//   gamma: (qx, qy, qw, qw) x (qz, qz, qy, qx) -> (qx qz, qy qz, qw qy, qw qx) (the 4-wide
+//          form's differ, with the attitude's: factors())
 //   gyro:  (w2, w3, w1, 0) x (w3, w1, w2, 0)   -> (w2 w3, w3 w1, w1 w2, 0)
 struct alignas(64) Rows {
 #if HEAVYTOP_RECURRENCE_WIDE
@@ -123,7 +127,9 @@ struct alignas(64) Rows {
   V8 qa[kM + 1];   // (q, gamma's left factors)
   V8 w3b[kM + 1];  // (w3 x4, gamma's right factors)
 #else
-  V4 q[kM + 1], ga[kM + 1], gb[kM + 1];
+  V4 ga[kM + 1], gb[kM + 1];
+  V4 la[kM + 1], lb[kM + 1], lc[kM + 1];  // the attitude's factors as row j
+  V4 ra[kM + 1], rb[kM + 1], rc[kM + 1];  // and as row n - j (factors())
 #endif
   V4 wa[kM + 1], wb[kM + 1];
 };
@@ -146,45 +152,97 @@ inline void store_row(const Row& row, double* c) {
 constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
 inline V4 flip(V4 v, V4i mask) { return reinterpret_cast<V4>(reinterpret_cast<V4i>(v) ^ mask); }
 
+#if HEAVYTOP_RECURRENCE_WIDE
 // Row n + 1's attitude, half (x) the sums of the products a1 = q w1, a2 = q w2, a3 = q w3 in
 // lanes (the scalar form: -half (a1[1] + a2[2] + a3[3]), half (a1[0] + a3[2] - a2[3]),
 // half (a2[0] + a1[3] - a3[1]), half (a3[0] + a2[1] - a1[2]); AttitudeTerms::rate), formed in
 // the registers rather than lane by lane.
-inline V4 attitude_rate(V4 a1, V4 a2, V4 a3, double half) {
+inline V4 attitude_rate(V4 a1, V4 a2, V4 a3, V4 half) {
   const V4 x = __builtin_shufflevector(__builtin_shufflevector(a1, a2, 1, 0, 4, 4), a3, 0, 1, 2, 4);
   const V4 y = __builtin_shufflevector(__builtin_shufflevector(a2, a3, 2, 6, 1, 1), a1, 0, 1, 7, 2);
   const V4 z = __builtin_shufflevector(__builtin_shufflevector(a3, a2, 3, 7, 1, 1), a1, 0, 1, 2, 6);
-  return V4{-half, half, half, half} * ((x + y) + flip(z, V4i{0, kSign, kSign, kSign}));
+  return half * ((x + y) + flip(z, V4i{0, kSign, kSign, kSign}));
 }
 // The spin-factored attitude's: -half (a1[1] + a2[2]), half (a1[0] - a2[3]), half (a2[0] + a1[3]),
 // half (a2[1] - a1[2]) (FactoredAttitudeTerms::rate).
-inline V4 factored_attitude_rate(V4 a1, V4 a2, double half) {
+inline V4 factored_attitude_rate(V4 a1, V4 a2, V4 half) {
   const V4 x = __builtin_shufflevector(a1, a2, 1, 0, 4, 5), y = __builtin_shufflevector(a2, a1, 2, 3, 7, 6);
-  return V4{-half, half, half, half} * (x + flip(y, V4i{0, kSign, 0, kSign}));
+  return half * (x + flip(y, V4i{0, kSign, 0, kSign}));
 }
 // gamma's products ag summed as (ag[1] + ag[3], ag[0] - ag[2], the same again): g2 / 2, g1 / 2.
 inline V4 half_gamma(V4 ag) {
   return __builtin_shufflevector(ag, ag, 1, 0, 1, 0) +
          flip(__builtin_shufflevector(ag, ag, 3, 2, 3, 2), V4i{0, kSign, 0, kSign});
 }
+#else
+// Row n + 1's attitude from the sums already in its lanes (factors()): half (x + y + z), the
+// scalar form's sums in its order (x + y commutes), z's sign flipped where the scalar form
+// subtracts. No shuffle between the last sum and the row: this is the chain from row n to n + 1.
+inline V4 attitude_rate(V4 x, V4 y, V4 z, V4 half) {
+  return half * ((x + y) + flip(z, V4i{0, kSign, kSign, kSign}));
+}
+inline V4 factored_attitude_rate(V4 x, V4 y, V4 half) {
+  return half * (x + flip(y, V4i{0, kSign, 0, kSign}));
+}
+// ... and gamma's (factors()): (ag[2] + ag[0], ag[3] - ag[1], +0, +0), g2 / 2, g1 / 2: the
+// high half brought down (a 128-bit extraction, which zeroes the rest) while the low half's sign
+// is flipped, and the zeros let the gravity term add -0 (no term) in lanes 2 and 3 with no blend.
+inline V4 half_gamma(V4 ag) {
+  return __builtin_shufflevector(ag, V4{}, 2, 3, 4, 5) +
+         flip(__builtin_shufflevector(ag, V4{}, 0, 1, 4, 5), V4i{0, kSign, 0, 0});
+}
+#endif
 
+#if HEAVYTOP_RECURRENCE_WIDE
 inline void arrange(Rows& r, const Row& row, int n, bool gyro) {
   const V4 q = row.q, w = row.w;
-#if HEAVYTOP_RECURRENCE_WIDE
   r.qq[n] = __builtin_shufflevector(q, q, 0, 1, 2, 3, 0, 1, 2, 3);
   r.w12[n] = __builtin_shufflevector(w, w, 0, 0, 0, 0, 1, 1, 1, 1);
   r.qa[n] = __builtin_shufflevector(q, q, 0, 1, 2, 3, 1, 2, 0, 0);
   r.w3b[n] = __builtin_shufflevector(w, q, 2, 2, 2, 2, 7, 7, 6, 5);
-#else
-  r.q[n] = q, r.ga[n] = __builtin_shufflevector(q, q, 1, 2, 0, 0), r.gb[n] = __builtin_shufflevector(q, q, 3, 3, 2, 1);
-#endif
   // (w2, w3, w1, 0) and (w3, w1, w2, 0): the pad is lane 3
   if (gyro) r.wa[n] = __builtin_shufflevector(w, w, 1, 2, 0, 3), r.wb[n] = __builtin_shufflevector(w, w, 2, 0, 1, 3);
 }
+#else
+// One row's factors, each in the lanes of the sum it goes into: the left ones (la, lb, lc, ga,
+// wa) as row j, the right ones (ra, rb, rc, gb, wb) as row n - j. The attitude's sums x = la ra,
+// y = lb rb, z = lc rc are attitude_rate()'s operands lane for lane (the scalar form's three
+// products of each component, in its order), so no shuffle follows the sums:
+//   plain:  x = (qx w1, qy w3, qw w2, qw w3), y = (qy w2, qw w1, qz w1, qx w2),
+//           z = (qz w3, qz w2, qx w3, qy w1)
+//   spin-factored: x = (qx v1, qw v1, qw v2, qx v2), y = (qy v2, qz v2, qz v1, qy v1)
+// and gamma's ag = ga gb = (qw qx, qw qy, qy qz, qx qz): half_gamma() adds the halves.
+struct Factors {
+  V4 la, lb, lc, ga, wa, ra, rb, rc, gb, wb;
+};
+inline Factors factors(const Row& row, bool gyro) {
+  const V4 q = row.q, w = row.w;
+  Factors f{};
+  f.ga = __builtin_shufflevector(q, q, 0, 0, 2, 1), f.gb = __builtin_shufflevector(q, q, 1, 2, 3, 3);
+  if (gyro) {
+    f.la = __builtin_shufflevector(q, q, 1, 2, 0, 0), f.lb = __builtin_shufflevector(q, q, 2, 0, 3, 1);
+    f.lc = __builtin_shufflevector(q, q, 3, 3, 1, 2);
+    f.ra = __builtin_shufflevector(w, w, 0, 2, 1, 2), f.rb = __builtin_shufflevector(w, w, 1, 0, 0, 1);
+    f.rc = __builtin_shufflevector(w, w, 2, 1, 2, 0);
+    // (w2, w3, w1, 0) and (w3, w1, w2, 0): the pad is lane 3
+    f.wa = __builtin_shufflevector(w, w, 1, 2, 0, 3), f.wb = __builtin_shufflevector(w, w, 2, 0, 1, 3);
+  } else {
+    f.la = __builtin_shufflevector(q, q, 1, 0, 0, 1), f.lb = __builtin_shufflevector(q, q, 2, 3, 3, 2);
+    f.ra = __builtin_shufflevector(w, w, 0, 0, 1, 1), f.rb = __builtin_shufflevector(w, w, 1, 1, 0, 0);
+  }
+  return f;
+}
+inline void arrange(Rows& r, const Row& row, int n, bool gyro) {
+  const Factors f = factors(row, gyro);
+  r.ga[n] = f.ga, r.gb[n] = f.gb, r.la[n] = f.la, r.lb[n] = f.lb, r.ra[n] = f.ra, r.rb[n] = f.rb;
+  if (gyro) r.lc[n] = f.lc, r.rc[n] = f.rc, r.wa[n] = f.wa, r.wb[n] = f.wb;
+}
+#endif
 
-// One order's sums of products: a1 = q w1, a2 = q w2, a3 = q w3 (lanes qw, qx, qy, qz),
-// ag = gamma's, aw = the gyroscopic ones (Plain only), each the sum over j of row j's factor
-// times row n - j's, in the order of recurrence_kernels.hpp: j = 1..n-1, then j = 0 and j = n.
+// One order's sums of products: a1 = q w1, a2 = q w2, a3 = q w3 (lanes qw, qx, qy, qz; in the
+// 4-wide form x, y, z instead, factors()), ag = gamma's, aw = the gyroscopic ones (Plain only),
+// each the sum over j of row j's factor times row n - j's, in the order of
+// recurrence_kernels.hpp: j = 1..n-1, then j = 0 and j = n.
 struct Sums {
   V4 a1, a2, a3, ag, aw;
 };
@@ -204,30 +262,26 @@ inline Sums sums_of(const Rows& r, [[maybe_unused]] const double (*c)[8], [[mayb
   a1 = __builtin_shufflevector(a12, a12, 0, 1, 2, 3), a2 = __builtin_shufflevector(a12, a12, 4, 5, 6, 7);
   a3 = __builtin_shufflevector(a3g, a3g, 0, 1, 2, 3), ag = __builtin_shufflevector(a3g, a3g, 4, 5, 6, 7);
 #else
-  // a's factors from row j, b's from row n - j: (q, ga, wa) and (w1 x4, w2 x4, w3 x4, gb, wb)
-  auto add = [&](V4 q, V4 ga, V4 wa, V4 w1, V4 w2, V4 w3, V4 gb, V4 wb) {
-    a1 += q * w1;
-    a2 += q * w2;
-    if constexpr (Gyro) a3 += q * w3;  // w3 is no variable of the spin-factored set
-    ag += ga * gb;
-    if constexpr (Gyro) aw += wa * wb;
+  // x, y, z (factors()) in a1, a2, a3: a's factors from row j, b's from row n - j
+  auto add = [&](const Factors& a, const Factors& b) {
+    a1 += a.la * b.ra;
+    a2 += a.lb * b.rb;
+    if constexpr (Gyro) a3 += a.lc * b.rc;  // the spin-factored set has no z
+    ag += a.ga * b.gb;
+    if constexpr (Gyro) aw += a.wa * b.wb;
   };
-  auto splat = [](const double* b, int i) { return V4{b[i], b[i], b[i], b[i]}; };
-  // the gyroscopic factors, which arrange() forms for Plain only
-  auto wa = [&](int j) { return Gyro ? r.wa[j] : V4{}; };
-  auto wb = [&](int j) { return Gyro ? r.wb[j] : V4{}; };
-  for (int j = 1; j < n; ++j) {
-    const double* b = c[n - j];
-    add(r.q[j], r.ga[j], wa(j), splat(b, 4), splat(b, 5), splat(b, 6), r.gb[n - j], wb(n - j));
-  }
+  // row j's stored factors (the spin-factored kernel reads none it never formed)
+  auto row = [&](int j) {
+    Factors f{};
+    f.ga = r.ga[j], f.gb = r.gb[j], f.la = r.la[j], f.lb = r.lb[j], f.ra = r.ra[j], f.rb = r.rb[j];
+    if constexpr (Gyro) f.lc = r.lc[j], f.rc = r.rc[j], f.wa = r.wa[j], f.wb = r.wb[j];
+    return f;
+  };
+  for (int j = 1; j < n; ++j) add(row(j), row(n - j));
   // j = 0 and j = n: row n's factors from its registers (`now`), not from the stores just made
-  const V4 w = now.w;
-  add(r.q[0], r.ga[0], wa(0), __builtin_shufflevector(w, w, 0, 0, 0, 0), __builtin_shufflevector(w, w, 1, 1, 1, 1),
-      __builtin_shufflevector(w, w, 2, 2, 2, 2), __builtin_shufflevector(now.q, now.q, 3, 3, 2, 1),
-      __builtin_shufflevector(w, w, 2, 0, 1, 3));
-  if (n > 0)
-    add(now.q, __builtin_shufflevector(now.q, now.q, 1, 2, 0, 0), __builtin_shufflevector(w, w, 1, 2, 0, 3), splat(c[0], 4),
-        splat(c[0], 5), splat(c[0], 6), r.gb[0], wb(0));
+  const Factors f = factors(now, Gyro);
+  add(row(0), f);
+  if (n > 0) add(f, row(0));
 #endif
   return {a1, a2, a3, ag, aw};
 }
@@ -240,19 +294,29 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
   using namespace HEAVYTOP_CAT(ns_, HEAVYTOP_RECURRENCE_SUFFIX);
   Rows r;
   Row row = load_row(c[0]);
+  // the constants in registers (k might alias the jet, for all the compiler knows, and would be
+  // read again each order); lanes 2 and 3 of the gravity term: below
+  const V4 e = V4{k.e1, k.e2, k.e3, 0.0}, kg = V4{2.0 * k.ka, -2.0 * k.kb, -0.0, -0.0};
   for (int n = 0; n < p; ++n) {
     arrange(r, row, n, true);
     const Sums sums = sums_of<true>(r, c, row, n);
     const V4 s = half_gamma(sums.ag), gamma = s + s;  // (g2, g1): 2 s, exactly
     g2[n] = gamma[0], g1[n] = gamma[1];
-    const double half = reciprocals.half[n], inv = reciprocals.inv[n];
+    V4 half;  // (-half, half, half, half)
+    __builtin_memcpy(&half, reciprocals.half[n], sizeof half);
+    const double inv = reciprocals.inv[n];
     // Euler: I w' = (I w) x w + m g R (gamma x e3), lane by lane inv (e1 aw[0] + ka g2),
     // inv (e2 aw[1] - kb g1), inv (e3 aw[2]), 0. ka g2 = (2 ka) s: 2 ka and 2 s are exact, so
     // it is the same real product and the same rounding (a finite run never nears overflow),
     // one multiplication less on the way to the next row; lanes 2 and 3
-    // have no gravity term (x + 0 could turn a -0 into +0).
-    const V4 gyro = V4{k.e1, k.e2, k.e3, 0.0} * sums.aw;
-    const V4 euler = __builtin_shufflevector(gyro + V4{2.0 * k.ka, -2.0 * k.kb, 0.0, 0.0} * s, gyro, 0, 1, 6, 7);
+    // have no gravity term (x + 0 could turn a -0 into +0; x + -0 is x: the 4-wide form's s has
+    // +0 there, so (-0) s = -0 and no blend waits on the chain).
+    const V4 gyro = e * sums.aw;
+#if HEAVYTOP_RECURRENCE_WIDE
+    const V4 euler = __builtin_shufflevector(gyro + kg * s, gyro, 0, 1, 6, 7);
+#else
+    const V4 euler = gyro + kg * s;
+#endif
     row = {attitude_rate(sums.a1, sums.a2, sums.a3, half),  // q' = q (x) (0, w) / 2
            V4{inv, inv, inv, inv} * euler};
     store_row(row, c[n + 1]);
@@ -264,18 +328,28 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
   using namespace HEAVYTOP_CAT(ns_, HEAVYTOP_RECURRENCE_SUFFIX);
   Rows r;
   const double nutation = k.c_over_a * c[0][6];  // rad/s, C w3 / A
+  const V4 kn = V4{-nutation, nutation, 0.0, 0.0}, kg = V4{2.0 * k.ka, -2.0 * k.ka, 0.0, 0.0};  // in registers
   Row row = load_row(c[0]);
   for (int n = 0; n < p; ++n) {
     arrange(r, row, n, false);
     const Sums sums = sums_of<false>(r, c, row, n);  // p v1, p v2 (lanes pw, px, py, pz); gamma's
     const V4 s = half_gamma(sums.ag), gamma = s + s;  // (g2, g1)
     g2[n] = gamma[0], g1[n] = gamma[1];
-    const double half = reciprocals.half[n], inv = reciprocals.inv[n];
+    V4 half;  // (-half, half, half, half)
+    __builtin_memcpy(&half, reciprocals.half[n], sizeof half);
+    const double inv = reciprocals.inv[n];
     // inv (-nutation v2 + ka g2), inv (nutation v1 - ka g1), 0, 0 (ka g2 as (2 ka) s, above)
-    const V4 v = V4{-nutation, nutation, 0.0, 0.0} * __builtin_shufflevector(row.w, row.w, 1, 0, 2, 3) +
-                 V4{2.0 * k.ka, -2.0 * k.ka, 0.0, 0.0} * s;
+#if HEAVYTOP_RECURRENCE_WIDE
+    const V4 v = kn * __builtin_shufflevector(row.w, row.w, 1, 0, 2, 3) + kg * s;
     row = {factored_attitude_rate(sums.a1, sums.a2, half),  // p' = p (x) (0, v1, v2, 0) / 2
            V4{inv, inv, 0.0, 0.0} * __builtin_shufflevector(v, V4{}, 0, 1, 4, 5)};
+#else
+    // lanes 2 and 3 (row 0's w3 among them) zeroed on the way in, off the chain through gamma,
+    // with s's zeros there (half_gamma) v's are +0 + +0 = +0
+    const V4 v = kn * __builtin_shufflevector(row.w, V4{}, 1, 0, 4, 5) + kg * s;
+    row = {factored_attitude_rate(sums.a1, sums.a2, half),  // p' = p (x) (0, v1, v2, 0) / 2
+           V4{inv, inv, 0.0, 0.0} * v};
+#endif
     store_row(row, c[n + 1]);
   }
 }
