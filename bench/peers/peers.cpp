@@ -41,6 +41,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "heavytop/heavytop.hpp"
+#include "timing.hpp"
 
 #ifdef HEAVYTOP_PEERS_MUJOCO
 #include <mujoco/mujoco.h>
@@ -50,6 +51,7 @@
 namespace {
 
 namespace odeint = boost::numeric::odeint;
+using peers::cpu_seconds, peers::median, peers::warm_up;
 
 struct Problem {
   std::string name;
@@ -336,34 +338,6 @@ Axes reference(const Problem& p) {
   odeint::integrate_times(odeint::bulirsch_stoer<std::array<LD, 7>, LD>(1e-19L, 1e-19L), rhs, x, ld_times.begin(),
                           ld_times.end(), LD(1e-3), [&](const std::array<LD, 7>& y, LD) { out.push_back(axis_of_state(y)); });
   return out;
-}
-
-// s, CPU time of this thread: on a machine shared with other jobs wall time measures the
-// others as much as the method.
-double cpu_seconds() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// Untimed runs of a method before its timed one, until 1 ms of CPU time has gone into them (at
-// least one run): each method then starts warm, with its code and data in the caches, not those
-// of the method before it, and with the processor's vector units in the state its own code
-// leaves them. The last matters for code with 256-bit instructions (heavytop's AVX2
-// recurrence): on this VM they ran 2.2-2.8x slower for the first ~250 us after more than ~1 ms
-// without any (docs/performance.md, "The wide units' warm-up"), while code without them (GSL,
-// Odeint as compiled here) was not slowed. One warm-up run was not enough for a 44 us run.
-template <class Run>
-void warm_up(const Run& run) {
-  const double start = cpu_seconds();
-  do run();
-  while (cpu_seconds() - start < 1e-3);
 }
 
 }  // namespace
