@@ -26,9 +26,9 @@ inline double median(std::vector<double> v) {
 // least one run): each method then starts warm, with its code and data in the caches, not those
 // of the method before it, and with the processor's vector units in the state its own code
 // leaves them. The last matters for code with 256-bit instructions (heavytop's AVX2
-// recurrence): on this VM they ran 2.2-2.8x slower for the first ~250 us after more than ~1 ms
-// without any (docs/performance.md, "The wide units' warm-up"), while code without them (GSL,
-// Odeint as compiled here) was not slowed. One warm-up run was not enough for a 44 us run.
+// recurrence, and GSL's through glibc's memcpy): on this VM a run after more than ~1 ms without
+// any took 2-3x its warm time (docs/performance.md, "The wide units' warm-up"); heavytop with
+// its SSE2 recurrence, 1.1x. One warm-up run was not enough for a 44 us run.
 template <class Run>
 void warm_up(const Run& run) {
   const double start = cpu_seconds();
