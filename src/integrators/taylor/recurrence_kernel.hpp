@@ -247,7 +247,7 @@ struct Sums {
   V4 a1, a2, a3, ag, aw;
 };
 template <bool Gyro>
-inline Sums sums_of(const Rows& r, [[maybe_unused]] const double (*c)[8], [[maybe_unused]] const Row& now, int n) {
+inline Sums sums_of(const Rows& r, [[maybe_unused]] const Row& now, int n) {
   V4 a1 = {}, a2 = {}, a3 = {}, ag = {}, aw = {};
 #if HEAVYTOP_RECURRENCE_WIDE
   V8 a12 = {}, a3g = {};
@@ -299,7 +299,7 @@ void HEAVYTOP_CAT(plain_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c)[8
   const V4 e = V4{k.e1, k.e2, k.e3, 0.0}, kg = V4{2.0 * k.ka, -2.0 * k.kb, -0.0, -0.0};
   for (int n = 0; n < p; ++n) {
     arrange(r, row, n, true);
-    const Sums sums = sums_of<true>(r, c, row, n);
+    const Sums sums = sums_of<true>(r, row, n);
     const V4 s = half_gamma(sums.ag), gamma = s + s;  // (g2, g1): 2 s, exactly
     g2[n] = gamma[0], g1[n] = gamma[1];
     V4 half;  // (-half, half, half, half)
@@ -332,7 +332,7 @@ void HEAVYTOP_CAT(factored_coefficients_, HEAVYTOP_RECURRENCE_SUFFIX)(double (*c
   Row row = load_row(c[0]);
   for (int n = 0; n < p; ++n) {
     arrange(r, row, n, false);
-    const Sums sums = sums_of<false>(r, c, row, n);  // p v1, p v2 (lanes pw, px, py, pz); gamma's
+    const Sums sums = sums_of<false>(r, row, n);  // p v1, p v2 (lanes pw, px, py, pz); gamma's
     const V4 s = half_gamma(sums.ag), gamma = s + s;  // (g2, g1)
     g2[n] = gamma[0], g1[n] = gamma[1];
     V4 half;  // (-half, half, half, half)
