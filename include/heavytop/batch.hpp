@@ -93,6 +93,11 @@ struct TiltBand {
   bool touched_low = false;  ///< the tilt passed `low` at one of the points the crossing test looks at
   double peak_tilt = 0.0;    ///< rad, the largest tilt at those points (`high` once exceeded)
   std::size_t steps = 0;     ///< Taylor steps taken (dimensionless)
+  /// 1/rad: the sum over the steps of 1 / (the tilt's amplitude in that step): the largest tilt
+  /// at the points the crossing test looks at in the step and the step before, each taken as
+  /// its chord 2 sin(tilt / 2), at most the tilt (infinite while the tilt is 0). What the steps'
+  /// errors weigh relative to the motion they perturb (decided_tilt_verdicts).
+  double inverse_tilt_sum = 0.0;
 };
 
 /// batch_tilt_verdicts() at stop_above = `high`, also watching a lower tilt `low` (rad, 0 <

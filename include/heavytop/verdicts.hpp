@@ -21,7 +21,9 @@
 ///      estimated as safety x (steps x per-step error) x (1 + peak / initial tilt), the last
 ///      factor for errors that grow with the tilt (an unstable upright rotation). A point
 ///      whose run stays below the band, or passes above it, with that estimate below half the
-///      band is decided there;
+///      band is decided there; so is a fall whose crossing, delayed by the errors' growth
+///      (crossing_delay_estimate: each step's error weighed against the tilt's amplitude
+///      then), still comes before the horizon;
 ///   3. the rest (within the band, or whose estimate is too large) take the default pass, and
 ///      their verdicts are batch_tilt_verdicts()' bits.
 /// Verdicts equal the default pass's on every example map and on a map built with many points
@@ -68,6 +70,15 @@ struct DecidedVerdict {
 /// body's terms: call it for a conservative batchable() body.
 bool tilt_forbidden_by_conserved_quantities(const Body& body, const InitialState& initial, double max_tilt,
                                             double margin);
+
+/// s: how much later than `band.t_end` the exact motion's tilt may cross `band`'s top `high`
+/// (rad), estimated from a loose run's band (tolerances `loose`) whose tilt grew past it from
+/// `tilt0` (rad, the start's) as an unstable rotation's does: the steps' errors, each weighed
+/// against the tilt's amplitude when it was made (TiltBand::inverse_tilt_sum), grow with the
+/// motion and delay or advance its crossing. +infinity where the estimate does not apply (the
+/// band not exceeded, or errors of more than 10 times the amplitude). An estimate, not a bound:
+/// tests/test_verdicts.cpp measures it against the crossing at 1e-12.
+double crossing_delay_estimate(const TiltBand& band, double tilt0, double high, const Tolerances& loose);
 
 /// The verdicts of batch_tilt_verdicts(bodies, initials, horizon, max_tilt, options) (its
 /// `exceeded`), each computed as the file comment says, into out[i]. Every body must be

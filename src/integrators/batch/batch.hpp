@@ -25,6 +25,8 @@ struct BatchResult {
   bool touched_low = false;
   double peak_cos = 1.0;
   std::size_t steps = 0;
+  // With band_low: TiltBand::inverse_tilt_sum (1/rad).
+  double inverse_tilt_sum = 0.0;
 };
 
 // One body of a batch, prepared in batch.cpp.
@@ -32,6 +34,7 @@ struct BatchPoint {
   std::size_t index;           // where its result goes
   double x0[7];                // to_vector(initial_rigid_body_state(initial)): q (w, x, y, z), w (rad/s)
   double tilt0;                // rad, the tilt of x0 (taylor.cpp's tilt_of)
+  bool symmetric;              // A == B: the spin-factored variables
   // The right-hand side's coefficients, as taylor/variables.hpp's Plain and SpinFactored hold them:
   double e1, e2, e3;           // (B - C)/A, (C - A)/B, (A - B)/C (dimensionless)
   double ka, kb;               // m g R / A, m g R / B (1/s^2)

@@ -222,6 +222,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
   bool active[W];
   double t[W], t_old[W];  // s
   std::size_t steps[W];
+  double last_largest[W];  // banded: the largest tilt's chord in the lane's previous step
   BatchResult e[W];
   std::size_t next_point = 0;
 
@@ -247,6 +248,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
       w.c_over_a[l] = b.c_over_a;
       t[l] = t_old[l] = 0.0;
       steps[l] = 0;
+      last_largest[l] = 0.0;
       active[l] = true;
       return;
     }
@@ -381,6 +383,12 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
         if (least < low_kz) e[l].touched_low = true;
         const double c = (least < 0.0 ? 0.0 : least) + cos_stop;  // past the crossing: stop_above's
         if (c < e[l].peak_cos) e[l].peak_cos = c;
+        // The tilt's amplitude: its largest chord at the same points in this step and the one
+        // before (kz = 1 - cos(stop_above) - 2 (qx^2 + qy^2), 2 (qx^2 + qy^2) = 2 sin^2(tilt / 2)).
+        const double twice_s = one_minus_cos_stop - least, largest = __builtin_sqrt(twice_s > 0.0 ? 2.0 * twice_s : 0.0);
+        const double amplitude = largest > last_largest[l] ? largest : last_largest[l];
+        last_largest[l] = largest;
+        e[l].inverse_tilt_sum += amplitude > 0.0 ? 1.0 / amplitude : __builtin_inf();
       }
       for (int k = 1; k <= kPieces && !crossed; ++k) {
         const double b = at[k][l], rb = Extremes ? rate_at[k][l] : 0.0, kb = kz_at[k][l];
