@@ -202,7 +202,8 @@ inline double tilt_of(double qw, double qx, double qy, double qz) {
 }
 
 // Extremes false: the verdict only (exceeded and t_end, the same bits), without the tilt's
-// extrema: no series of d(k_zeta)/dt, no roots but the crossing's, no tilt at each step end.
+// extrema: no series of d(k_zeta)/dt, no roots but the crossing's, no tilt at the crossing or
+// at the step ends.
 template <bool Symmetric, bool Extremes>
 void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, BatchResult* out) {
   const int p = s.order;
@@ -399,7 +400,7 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
           if (crossing < 0.0 || extremum < crossing) note(l, t0 + extremum, tilt_at(l, t0 + extremum));
         }
         if (crossing >= 0.0) {
-          note(l, t0 + crossing, tilt_at(l, t0 + crossing));
+          if constexpr (Extremes) note(l, t0 + crossing, tilt_at(l, t0 + crossing));
           e[l].exceeded = true;
           e[l].t_end = t0 + crossing;
           crossed = true;
