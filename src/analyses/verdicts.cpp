@@ -47,7 +47,8 @@ double crossing_delay_estimate(const TiltBand& band, double tilt0, double high, 
   // moves the crossing by ln(1 + rho) / lambda, lambda = ln(high / tilt0) / t_end. Beyond
   // rho = 10 the growth of errors is no longer the start's.
   const double rho = kSafety * tilt_error_per_step(loose) * band.inverse_tilt_sum;
-  if (!band.exceeded || !(rho <= 10.0) || !(high > tilt0) || !(tilt0 > 0.0)) return std::numeric_limits<double>::infinity();
+  if (!band.exceeded || !(rho <= 10.0) || !(high > tilt0) || !(tilt0 > 0.0))
+    return std::numeric_limits<double>::infinity();
   return band.t_end * std::log1p(rho) / std::log(high / tilt0);
 }
 

@@ -386,7 +386,8 @@ void scan(const BatchPoint* points, std::size_t count, const BatchSettings& s, B
         if (c < e[l].peak_cos) e[l].peak_cos = c;
         // The tilt's amplitude: its largest chord at the same points in this step and the one
         // before (kz = 1 - cos(stop_above) - 2 (qx^2 + qy^2), 2 (qx^2 + qy^2) = 2 sin^2(tilt / 2)).
-        const double twice_s = one_minus_cos_stop - least, largest = __builtin_sqrt(twice_s > 0.0 ? 2.0 * twice_s : 0.0);
+        const double twice_s = one_minus_cos_stop - least;
+        const double largest = __builtin_sqrt(twice_s > 0.0 ? 2.0 * twice_s : 0.0);
         const double amplitude = largest > last_largest[l] ? largest : last_largest[l];
         last_largest[l] = largest;
         e[l].inverse_tilt_sum += amplitude > 0.0 ? 1.0 / amplitude : __builtin_inf();
