@@ -134,7 +134,7 @@ void decided_tilt_verdicts(std::span<const Body> bodies, std::span<const Initial
     const double high = max_tilt + band;
     for (const detail::BatchPoint& p : loose.plain) {
       const TiltBand b = detail::tilt_band(results[p.index]);
-      const double tilt0 = std::max(tilt(initials[p.index].theta0, initials[p.index].phi0), 1e-6);
+      const double tilt0 = std::max(p.tilt0, 1e-6);
       const double sum = kSafety * per_step * static_cast<double>(b.steps);  // rad, the steps' errors
       bool decided = false;
       if (!b.exceeded) {
