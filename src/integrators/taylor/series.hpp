@@ -141,7 +141,10 @@ inline void horner_pair(const JetOf<W>& x, int p, double tau_a, double tau_b, do
       const v2d c = load2(&x.c[n][2 * i]);
       a[i] = a[i] * ta + c, b[i] = b[i] * tb + c;
     }
-  for (int i = 0; i < kPairs; ++i) std::memcpy(out_a + 2 * i, &a[i], sizeof a[i]), std::memcpy(out_b + 2 * i, &b[i], sizeof b[i]);
+  for (int i = 0; i < kPairs; ++i) {
+    std::memcpy(out_a + 2 * i, &a[i], sizeof a[i]);
+    std::memcpy(out_b + 2 * i, &b[i], sizeof b[i]);
+  }
 }
 
 // Variable i of the jet at tau (Horner).
