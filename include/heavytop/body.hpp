@@ -56,6 +56,12 @@ struct Body {
   /// principal axes and the centre of mass is on z). Nonzero, A, B, C are the tensor's
   /// diagonal about body axes that are not principal.
   GeneralInertia general;
+  /// m, >= 0: the radius of the sphere centred at O on the axis with which the body touches a
+  /// table (SPEC section 16; 0: a sharp point at O). Only its drawing on a pivot.
+  double tip_radius = 0.0;
+  /// m, >= 0: or the radius of the ring about the axis in the plane z = 0 through O (thickened
+  /// by tip_radius: a coin, a disc); 0: the sphere above.
+  double rim_radius = 0.0;
 
   /// N m, the gravitational moment m g R (signed like R).
   double mgR() const noexcept { return mass * gravity * length; }

@@ -36,3 +36,4 @@
 #include "heavytop/mass_properties.hpp" // a body from its parts or a mesh (SPEC section 10)
 #include "heavytop/precession.hpp"      // steady precessions and permanent rotations at a tilt
 #include "heavytop/units.hpp"           // rpm (SPEC section 9)
+#include "heavytop/table.hpp"           // the body on a table (SPEC section 16)

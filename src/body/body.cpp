@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
@@ -75,6 +76,10 @@ void validate(const Body& body) {
   require_triangle(body.C, body.A, body.B, "body.B",
                    "a real body has C + A >= B (triangle inequality of the moments of inertia)");
   validate(body.damping);
+  for (const auto& [radius, key] : {std::pair{body.tip_radius, "body.tip_radius"}, std::pair{body.rim_radius, "body.rim_radius"}}) {
+    require_finite(radius, key);
+    if (!(radius >= 0.0)) throw InvalidInput(key, "must be >= 0 (m)");
+  }
   const GeneralInertia& g = body.general;
   require_finite(g.offset_x, "body.offset_x");
   require_finite(g.offset_y, "body.offset_y");

@@ -1,0 +1,144 @@
+#pragma once
+/// \file
+/// The body on a table (SPEC section 16): instead of a pivot, the body stands on the horizontal
+/// plane zeta = 0 (gravity along -zeta) with a sphere of radius Body::tip_radius centred at O
+/// (or a ring of radius Body::rim_radius about the axis through O, thickened by tip_radius),
+/// and touches it at the lowest point P. The height of O and the normal force follow exactly
+/// from the attitude (no penalty springs); the contact law sets the horizontal force at P.
+/// Physics, laws and sources: docs/table.md.
+
+#include <complex>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heavytop/body.hpp"
+#include "heavytop/nonlinear.hpp"
+#include "heavytop/progress.hpp"
+#include "heavytop/state.hpp"
+
+namespace heavytop {
+
+/// What holds the body at O or P (SPEC section 16, `table.contact`).
+enum class Contact {
+  Pivot,         ///< "pivot": O fixed (sections 1-15); no table
+  Frictionless,  ///< "frictionless": the normal force only
+  Rolling,       ///< "rolling": P does not slip (nonholonomic); energy conserved
+  Sliding,       ///< "sliding": a friction force at P by `FrictionLaw`
+};
+
+/// The friction law of Contact::Sliding (SPEC section 16, `table.friction_law`).
+enum class FrictionLaw {
+  Viscous,  ///< "viscous": F = -mu N v_P / slip_speed (Cohen 1977 with slip_speed 1 m/s)
+  Coulomb,  ///< "coulomb": the set-valued law (stick while |F| <= mu N, slip against the slip)
+};
+
+std::string_view name(Contact contact);
+std::string_view name(FrictionLaw law);
+/// The contact called `name` ("pivot", "frictionless", "rolling", "sliding"), or nullopt.
+std::optional<Contact> contact_from_name(std::string_view name);
+/// The law called `name` ("viscous", "coulomb"), or nullopt.
+std::optional<FrictionLaw> friction_law_from_name(std::string_view name);
+
+/// The table under the body (SPEC section 16's `[table]`); the default is the pivot.
+struct Table {
+  Contact contact = Contact::Pivot;
+  double friction = 0.0;                        ///< mu (dimensionless, >= 0): Sliding only
+  FrictionLaw friction_law = FrictionLaw::Viscous;
+  double slip_speed = 1.0;                      ///< m/s (> 0): the viscous law's reference speed
+
+  /// True for every contact but the pivot.
+  bool on_table() const noexcept { return contact != Contact::Pivot; }
+  /// True if every setting is in range; else false with "key: rule" in `why` (keys
+  /// "table.friction", "table.slip_speed").
+  bool IsValid(std::string* why) const;
+};
+
+/// Throws InvalidInput for the first rule `table` breaks: "table.friction" finite and >= 0,
+/// "table.slip_speed" finite and > 0.
+void validate(const Table& table);
+
+/// validate(table) and validate(body), then, on a table,
+/// for what the body cannot do there: a general body (SPEC section 11; key its first nonzero
+/// term), a damped one (key "damping.*": the table's own losses are its contact's), and a
+/// rim whose axis starts exactly vertical is checked by simulate_on_table (key "motion.theta0").
+void validate(const Table& table, const Body& body);
+
+/// What a run on the table did and how it ended.
+struct TableSummary {
+  enum class End {
+    Completed,    ///< every sample computed
+    LeftTable,    ///< the normal force reached 0 at `end_time`: the body leaves the table
+  };
+  End end = End::Completed;
+  double end_time = 0.0;        ///< s, the last sample's time (the event's when it ended early)
+  std::size_t steps = 0;        ///< accepted steps
+  std::size_t rhs_evaluations = 0;
+  /// The largest |Q(t) - Q(0)| over the accepted steps, relative to the scales of docs/table.md:
+  /// the energy (over T(0) + m g |l| + m g r) and Jellett's integral and the vertical angular
+  /// momentum about G (over |L_G(0)| (|l| + r + rim) and |L_G(0)|; 0 where they are zero).
+  double max_relative_energy_drift = 0.0;
+  double max_relative_jellett_drift = 0.0;
+  double max_relative_vertical_momentum_drift = 0.0;
+};
+
+/// The columns a table trajectory has after SPEC's seven (t, theta, phi, theta_rate, phi_rate,
+/// tilt, azimuth), in order (SPEC section 16): x, y (m: P on the table), height (m: O above the
+/// table), normal_force (N), slip_speed (m/s), spin (rad/s: w . k), energy (J), jellett
+/// (kg m^3/s: -L_G . (P - G)); then vertical_momentum (kg m^2/s: L_G . e_zeta).
+inline constexpr std::string_view kTableColumns[] = {"x",    "y",      "height", "normal_force", "slip_speed",
+                                                     "spin", "energy", "jellett", "vertical_momentum"};
+
+/// A run on the table.
+struct TableRun {
+  Trajectory trajectory;  ///< t, theta, phi, theta_rate, phi_rate, then extra: tilt, azimuth, kTableColumns
+  TableSummary summary;
+};
+
+/// The motion of `body` on `table` (not the pivot) from `initial` (SPEC section 2's attitude and
+/// angular velocity; P at the table's origin; O without horizontal velocity, or rolling), sampled
+/// at `grid`, integrated by DOP853 (stepper of dop853.hpp) at `tolerances` (which apply to the
+/// quaternion, the angular velocity in rad/s and G's horizontal position and velocity in m and
+/// m/s). Ends early, with a last sample at the event, when the normal force reaches 0 (located
+/// to 1e-12 s on the dense output). Throws InvalidInput for bad input (validate(table, body), the
+/// state, the tolerances, N < 0 at t = 0 is not an error: it ends the run at t = 0) and
+/// std::runtime_error (one line, with the time) for a numerical failure or Painleve's paradox
+/// (the normal force undetermined).
+TableRun simulate_on_table(const Body& body, const Table& table, const InitialState& initial, const SampleGrid& grid,
+                           const Tolerances& tolerances = {}, const Progress& progress = {});
+
+/// A body's central moments about its transverse axes through G (kg m^2): A - m l^2, B - m l^2.
+double central_moment_A(const Body& body) noexcept;
+double central_moment_B(const Body& body) noexcept;
+
+/// The linear stability of the body spinning about its vertical axis on the table (SPEC section
+/// 16's "upright" and "inverted").
+struct SpinningStateStability {
+  bool exists = true;         ///< false for a rim (a disc with a vertical axis lies flat)
+  bool stable = false;        ///< every eigenvalue has real part <= 0 (to rounding), none repeated on the axis
+  bool asymptotically = false;  ///< every eigenvalue but the spin family's zeros has real part < 0
+  std::optional<double> critical_spin;  ///< rad/s: the slowest spin above which it is stable
+  std::vector<std::pair<double, std::optional<double>>> stable_spin_intervals;  ///< rad/s, [lo, hi or above]
+  std::vector<std::complex<double>> eigenvalues;  ///< 1/s, of the body-frame linearisation, sorted
+  double growth_rate = 0.0;   ///< 1/s, the largest real part
+};
+
+struct TableStability {
+  Contact contact = Contact::Pivot;
+  SpinningStateStability upright;   ///< tilt 0
+  SpinningStateStability inverted;  ///< tilt pi
+};
+
+/// The linear stability of the upright and inverted spinning states at `spin` (rad/s) on `table`
+/// (not the pivot): the eigenvalues of the exact linearisation of the body-frame equations
+/// (complex-step derivatives: exact to rounding), the intervals by scanning the spin and
+/// bisecting each change. Under Coulomb friction the vertical state sticks: the rolling one.
+TableStability table_stability(const Body& body, const Table& table, double spin);
+
+/// The eigenvalues (1/s) of the linearisation at `spin` of the upright (`inverted` false) or
+/// inverted state, as table_stability() computes them.
+std::vector<std::complex<double>> table_eigenvalues(const Body& body, const Table& table, double spin, bool inverted);
+
+}  // namespace heavytop

@@ -1,0 +1,378 @@
+// The body on a table (SPEC section 16): the contact's names and checks, and its motion
+// integrated by the one DOP853 stepper (integrators/dop853/stepper.hpp) with the normal force's
+// zero located on the dense output.
+#include "heavytop/table.hpp"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <fmt/format.h>
+
+#include "heavytop/frames.hpp"
+#include "heavytop/rigid_body.hpp"
+
+#include "integrators/dop853/stepper.hpp"
+#include "integrators/monitor.hpp"
+#include "table/contact_dynamics.hpp"
+
+namespace heavytop {
+
+namespace {
+
+struct ContactName {
+  Contact contact;
+  std::string_view name;
+};
+constexpr ContactName kContacts[] = {{Contact::Pivot, "pivot"},
+                                     {Contact::Frictionless, "frictionless"},
+                                     {Contact::Rolling, "rolling"},
+                                     {Contact::Sliding, "sliding"}};
+
+}  // namespace
+
+std::string_view name(Contact contact) {
+  for (const auto& c : kContacts)
+    if (c.contact == contact) return c.name;
+  return "pivot";
+}
+
+std::optional<Contact> contact_from_name(std::string_view text) {
+  for (const auto& c : kContacts)
+    if (c.name == text) return c.contact;
+  return std::nullopt;
+}
+
+std::string_view name(FrictionLaw law) { return law == FrictionLaw::Coulomb ? "coulomb" : "viscous"; }
+
+std::optional<FrictionLaw> friction_law_from_name(std::string_view text) {
+  if (text == "viscous") return FrictionLaw::Viscous;
+  if (text == "coulomb") return FrictionLaw::Coulomb;
+  return std::nullopt;
+}
+
+void validate(const Table& table) {
+  if (!(std::isfinite(table.friction) && table.friction >= 0.0))
+    throw InvalidInput("table.friction", "must be a finite number >= 0");
+  if (!(std::isfinite(table.slip_speed) && table.slip_speed > 0.0))
+    throw InvalidInput("table.slip_speed", "must be a finite number > 0 (m/s)");
+}
+
+bool Table::IsValid(std::string* why) const {
+  try {
+    validate(*this);
+    return true;
+  } catch (const InvalidInput& e) {
+    if (why) *why = fmt::format("{}: {}", e.key(), e.rule());
+    return false;
+  }
+}
+
+void validate(const Table& table, const Body& body) {
+  validate(table);
+  validate(body);
+  if (!table.on_table()) return;
+  if (const char* key = first_general_key(body))
+    throw InvalidInput(key, "a body on a table must have its centre of mass on the axis and principal axes "
+                            "(SPEC section 16; the general body of section 11 is for the pivot)");
+  const Damping& d = body.damping;
+  const char* damped = d.transverse != 0.0 ? "damping.transverse"
+                       : d.axial != 0.0    ? "damping.axial"
+                       : d.friction != 0.0 ? "damping.friction"
+                       : d.driven          ? "motion.driven"
+                                           : nullptr;
+  if (damped)
+    throw InvalidInput(damped, fmt::format("applies to the pivot only: on a table (table.contact = \"{}\") the losses "
+                                           "are the contact's (table.friction)",
+                                           name(table.contact)));
+  if (table.contact == Contact::Sliding && table.friction_law == FrictionLaw::Coulomb)
+    throw InvalidInput("table.friction_law", "\"coulomb\" is not implemented yet (issue 42): use \"viscous\", or "
+                                             "\"rolling\" for the stuck contact");
+}
+
+double central_moment_A(const Body& body) noexcept { return body.A - body.mass * body.length * body.length; }
+double central_moment_B(const Body& body) noexcept { return body.B - body.mass * body.length * body.length; }
+
+namespace {
+
+using detail::ContactMotion;
+using detail::TableParameters;
+using V3 = Eigen::Vector3d;
+constexpr std::size_t kStateSize = 11;  // q (4), omega in body axes (3), G's x, y (2), G's vx, vy (2)
+using TableVector = std::array<double, kStateSize>;
+
+// The rotation body-to-fixed of q / |q| (as from_vector(), rigid_body.cpp).
+Eigen::Matrix3d rotation_of(const TableVector& y) {
+  return from_vector({y[0], y[1], y[2], y[3], y[4], y[5], y[6]}).attitude;
+}
+
+// One instant of the motion: what the right-hand side and the samples need.
+struct Instant {
+  Eigen::Matrix3d R;  // body to fixed
+  V3 gamma, omega;    // body axes
+  V3 velocity;        // G's velocity, body axes
+  ContactMotion<double> motion;
+  detail::ContactGeometry<double> geometry;
+};
+
+Instant instant_of(const TableParameters& p, const TableVector& y) {
+  Instant in;
+  in.R = rotation_of(y);
+  in.gamma = in.R.row(2).transpose();
+  in.omega = V3(y[4], y[5], y[6]);
+  in.geometry = detail::contact_geometry(p, in.gamma);
+  if (p.contact == Contact::Rolling) {
+    in.velocity = in.omega.cross(in.geometry.s);
+    in.motion = detail::rolling_motion(p, in.gamma, in.omega);
+  } else {
+    const double z_rate = in.geometry.f1 * in.gamma.cross(in.omega)[2];
+    in.velocity = in.R.transpose() * V3(y[9], y[10], z_rate);
+    in.motion = detail::sliding_motion(p, in.gamma, in.omega, in.velocity);
+  }
+  return in;
+}
+
+struct TableSystem {
+  TableParameters p;
+  void operator()(const TableVector& y, TableVector& dydt, double) const {
+    const Instant in = instant_of(p, y);
+    const double qw = y[0], qx = y[1], qy = y[2], qz = y[3], w1 = y[4], w2 = y[5], w3 = y[6];
+    dydt[0] = 0.5 * (-qx * w1 - qy * w2 - qz * w3);
+    dydt[1] = 0.5 * (qw * w1 + qy * w3 - qz * w2);
+    dydt[2] = 0.5 * (qw * w2 + qz * w1 - qx * w3);
+    dydt[3] = 0.5 * (qw * w3 + qx * w2 - qy * w1);
+    for (int i = 0; i < 3; ++i) dydt[4 + i] = in.motion.omega_dot[i];
+    const V3 v = in.R * in.velocity, a = in.R * in.motion.accel;
+    dydt[7] = v[0];
+    dydt[8] = v[1];
+    dydt[9] = a[0];
+    dydt[10] = a[1];
+  }
+};
+
+// The quantities a run watches (SPEC section 16's columns).
+struct Watched {
+  double energy, jellett, vertical_momentum;
+};
+
+Watched watched(const TableParameters& p, const Instant& in) {
+  const V3 L = detail::inertia_times(p, in.omega);
+  const double height = p.tip_radius + p.rim_radius * in.geometry.S + p.length * in.geometry.c;
+  return {0.5 * p.mass * in.velocity.squaredNorm() + 0.5 * in.omega.dot(L) + p.mass * p.gravity * height,
+          L.dot(in.geometry.s), L.dot(in.gamma)};
+}
+
+struct DriftScales {
+  double energy, jellett, momentum;
+};
+
+struct TableHooks {
+  TableParameters p;
+  TableSummary* summary;
+  Watched initial;
+  DriftScales scales;
+
+  void project(TableVector& y, TableVector& dydt) { detail::renormalise_quaternion(y, dydt); }
+  void rejected() {}
+  void accepted(double, const TableVector& y, std::size_t evaluations) {
+    ++summary->steps;
+    summary->rhs_evaluations = evaluations;
+    const Watched w = watched(p, instant_of(p, y));
+    auto raise = [](double& drift, double value, double start, double scale) {
+      drift = std::max(drift, std::abs(value - start) / scale);
+    };
+    raise(summary->max_relative_energy_drift, w.energy, initial.energy, scales.energy);
+    raise(summary->max_relative_jellett_drift, w.jellett, initial.jellett, scales.jellett);
+    raise(summary->max_relative_vertical_momentum_drift, w.vertical_momentum, initial.vertical_momentum,
+          scales.momentum);
+  }
+  void evaluated(std::size_t evaluations) { summary->rhs_evaluations = evaluations; }
+};
+
+using Stepper = detail::Dop853Stepper<kStateSize, TableSystem, TableHooks>;
+
+// Appends the sample of state y at t to the run's trajectory.
+class TableSampler {
+ public:
+  TableSampler(const TableParameters& p, Trajectory& out) : p_(p), out_(out) {
+    out_.extra.clear();
+    for (auto c : kAxisDirectionColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
+    for (auto c : kTableColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
+  }
+
+  void add(double t, const TableVector& y) {
+    const Instant in = instant_of(p_, y);
+    const V3 k = in.R.col(2), k_rate = in.R * in.omega.cross(V3::UnitZ());
+    const AxisAngles a = axis_angles(k, k_rate);
+    out_.t.push_back(t);
+    out_.theta.push_back(a.theta);
+    out_.phi.push_back(a.phi);
+    out_.theta_rate.push_back(a.theta_rate);
+    out_.phi_rate.push_back(a.phi_rate);
+    const V3 P = V3(y[7], y[8], 0.0) - in.R * in.geometry.s;
+    const V3 slip = in.motion.slip - in.motion.slip.dot(in.gamma) * in.gamma;
+    const Watched w = watched(p_, in);
+    const double values[] = {tilt_of_axis(k[0], k[1], k[2]),
+                             azimuth_(k[0], k[1]),
+                             P[0],
+                             P[1],
+                             p_.tip_radius + p_.rim_radius * in.geometry.S,
+                             in.motion.normal,
+                             p_.contact == Contact::Rolling ? 0.0 : slip.norm(),
+                             in.omega[2],
+                             w.energy,
+                             w.jellett,
+                             w.vertical_momentum};
+    for (std::size_t i = 0; i < std::size(values); ++i) out_.extra[i].second.push_back(values[i]);
+  }
+
+ private:
+  struct Azimuth {
+    ContinuousAzimuth continuous;
+    double operator()(double kx, double ky) { return continuous.of_axis(kx, ky); }
+  };
+  const TableParameters& p_;
+  Trajectory& out_;
+  Azimuth azimuth_;
+};
+
+TableVector initial_vector(const TableParameters& p, const InitialState& initial) {
+  const RigidBodyVector x = to_vector(initial_rigid_body_state(initial));
+  TableVector y{};
+  for (int i = 0; i < 7; ++i) y[i] = x[i];
+  const Eigen::Matrix3d R = rotation_of(y);
+  const V3 gamma = R.row(2).transpose(), omega(y[4], y[5], y[6]);
+  const auto g = detail::contact_geometry(p, gamma);
+  const V3 G = R * g.s;  // P at the table's origin
+  // O at rest horizontally (frictionless, sliding), or rolling.
+  const V3 v = R * (p.contact == Contact::Rolling ? omega.cross(g.s) : omega.cross(V3(0.0, 0.0, p.length)));
+  y[7] = G[0];
+  y[8] = G[1];
+  y[9] = v[0];
+  y[10] = v[1];
+  return y;
+}
+
+[[noreturn]] void painleve(double t) {
+  throw std::runtime_error(fmt::format("table: the normal force is undetermined at t = {:.9g} s (Painleve's paradox: "
+                                       "friction too strong at this tilt); the run stops there", t));
+}
+
+}  // namespace
+
+namespace detail {
+
+// One run on the table, step by step: `on_step(view)` sees each accepted step's interval
+// [t0, t1] (t1 the time the body leaves the table, if it does in this step) with its dense
+// output, and returns false to stop. The run ends at `horizon`, when the normal force reaches 0
+// (its zero located on the dense output) or when on_step stops it.
+class TableIntegration {
+ public:
+  TableIntegration(const Body& body, const Table& table, const InitialState& initial, double horizon,
+                   const Tolerances& tolerances)
+      : p_(TableParameters::of(body, table)), horizon_(horizon), tolerances_(tolerances) {
+    validate(table, body);
+    if (!table.on_table()) throw InvalidInput("table.contact", "needs a table, not \"pivot\"");
+    validate(initial);
+    validate(tolerances);
+    if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("t_end", "must be a finite number >= 0");
+    y0_ = initial_vector(p_, initial);
+    const Instant in0 = instant_of(p_, y0_);
+    if (p_.rim_radius > 0.0 && !(in0.geometry.S > 0.0))
+      throw InvalidInput("motion.theta0", "a rim (body.rim_radius > 0) with its axis exactly vertical lies flat on "
+                                          "the table: start it tilted");
+    initial_ = watched(p_, in0);
+    const double reach = std::abs(p_.length) + p_.tip_radius + p_.rim_radius;
+    const double kinetic = initial_.energy - p_.mass * p_.gravity * (p_.tip_radius + p_.rim_radius * in0.geometry.S +
+                                                                      p_.length * in0.geometry.c);
+    const double L0 = detail::inertia_times(p_, in0.omega).norm();
+    auto positive = [](double x) { return x > 0.0 ? x : 1.0; };
+    scales_ = {positive(kinetic + p_.mass * p_.gravity * reach), positive(L0 * reach), positive(L0)};
+    if (!(in0.motion.denominator > 0.0)) painleve(0.0);
+    normal0_ = in0.motion.normal;
+  }
+
+  const TableParameters& parameters() const { return p_; }
+  const TableVector& initial_state() const { return y0_; }
+
+  struct StepView {
+    Stepper& stepper;
+    double t0, t1;
+    void state_at(double t, TableVector& y) const { stepper.interpolate(t, y); }
+  };
+
+  template <class OnStep>
+  void run(TableSummary& summary, OnStep&& on_step) {
+    summary = TableSummary{};
+    if (normal0_ < 0.0) {
+      summary.end = TableSummary::End::LeftTable;
+      return;
+    }
+    if (horizon_ == 0.0) return;
+    Stepper stepper(TableSystem{p_}, y0_, horizon_, tolerances_, TableHooks{p_, &summary, initial_, scales_});
+    TableVector y;
+    while (stepper.time() < horizon_) {
+      stepper.step();
+      const Instant end = instant_of(p_, stepper.state());
+      if (!(end.motion.denominator > 0.0)) painleve(stepper.time());
+      if (end.motion.normal < 0.0) {
+        // The normal force's zero inside the step, on the 7th-order dense output.
+        auto normal_at = [&](double s) {
+          stepper.interpolate(s, y);
+          return instant_of(p_, y).motion.normal;
+        };
+        boost::uintmax_t iterations = 100;
+        const auto bracket = boost::math::tools::toms748_solve(
+            normal_at, stepper.previous_time(), stepper.time(), instant_of(p_, stepper.previous_state()).motion.normal,
+            end.motion.normal, [](double a, double b) { return std::abs(b - a) <= 1e-12 * std::max(1.0, std::abs(a)); },
+            iterations);
+        const double t_leave = 0.5 * (bracket.first + bracket.second);
+        summary.end = TableSummary::End::LeftTable;
+        summary.end_time = t_leave;
+        on_step(StepView{stepper, stepper.previous_time(), t_leave});
+        return;
+      }
+      summary.end_time = stepper.time();
+      if (!on_step(StepView{stepper, stepper.previous_time(), stepper.time()})) return;
+    }
+  }
+
+ private:
+  TableParameters p_;
+  double horizon_;
+  Tolerances tolerances_;
+  TableVector y0_;
+  Watched initial_;
+  DriftScales scales_;
+  double normal0_ = 0.0;
+};
+
+}  // namespace detail
+
+TableRun simulate_on_table(const Body& body, const Table& table, const InitialState& initial, const SampleGrid& grid,
+                           const Tolerances& tolerances, const Progress& progress) {
+  detail::TableIntegration integration(body, table, initial, grid.t_end, tolerances);
+  TableRun run;
+  TableSampler sampler(integration.parameters(), run.trajectory);
+  run.trajectory.reserve(grid.count);
+  sampler.add(0.0, integration.initial_state());
+  std::size_t next = 1;
+  TableVector y;
+  integration.run(run.summary, [&](const detail::TableIntegration::StepView& step) {
+    for (; next < grid.count && grid.time(next) <= step.t1; ++next) {
+      step.state_at(grid.time(next), y);
+      sampler.add(grid.time(next), y);
+      if (progress) progress(grid.time(next));
+    }
+    if (run.summary.end == TableSummary::End::LeftTable && run.trajectory.t.back() != step.t1) {
+      step.state_at(step.t1, y);  // the last row at the event
+      sampler.add(step.t1, y);
+    }
+    return true;
+  });
+  if (run.summary.end == TableSummary::End::Completed) run.summary.end_time = run.trajectory.t.back();
+  return run;
+}
+
+}  // namespace heavytop

@@ -1,0 +1,302 @@
+// The body on a table (table.hpp, SPEC section 16) against independent routes: the
+// frictionless top's reduction to a quadrature (the tilt does not depend on the tip's radius;
+// its turning points are the roots of the effective energy), the first integrals each contact
+// keeps (energy, the vertical angular momentum about G, Jellett's integral), the closed forms of
+// the spinning states' stability derived in docs/table.md (frictionless, rolling: Routh's
+// criterion, viscous sliding: the spin at which the upright state changes stability, free of
+// mu and slip_speed), and the published tippe top (Friedl 1997; Leine and Glocker 2003).
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <gtest/gtest.h>
+
+#include "heavytop/table.hpp"
+
+namespace heavytop {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+// The built-in wooden toy top's numbers (about its tip O): A_G = 6e-6, C = 1.2e-5 kg m^2.
+Body toy_top(double tip_radius) {
+  Body b;
+  b.mass = 0.060;
+  b.length = 0.025;
+  b.C = 1.2e-5;
+  b.A = b.B = 6.0e-6 + b.mass * b.length * b.length;
+  b.tip_radius = tip_radius;
+  return b;
+}
+
+// Friedl's tippe top on its ball (Leine and Glocker 2003): m = 6 g, A_G = 8e-7, C = 7e-7 kg m^2,
+// r = 15 mm, the centre of mass 3 mm below the ball's centre.
+Body tippe_top(double central_A = 8e-7) {
+  Body b;
+  b.mass = 0.006;
+  b.length = -0.003;
+  b.C = 7e-7;
+  b.A = b.B = central_A + b.mass * b.length * b.length;
+  b.tip_radius = 0.015;
+  return b;
+}
+
+Table table_of(Contact contact, double friction = 0.0) {
+  Table t;
+  t.contact = contact;
+  t.friction = friction;
+  return t;
+}
+
+InitialState start(double spin, double theta0, double phi0 = 0.0, double phi_rate0 = 0.0) {
+  InitialState s;
+  s.spin = spin;
+  s.theta0 = theta0;
+  s.phi0 = phi0;
+  s.phi_rate0 = phi_rate0;
+  return s;
+}
+
+Tolerances tight() {
+  Tolerances t;
+  t.rtol = 1e-13;
+  t.atol = 1e-14;
+  return t;
+}
+
+const std::vector<double>& column(const TableRun& run, const char* name) {
+  for (const auto& [n, values] : run.trajectory.extra)
+    if (n == name) return values;
+  throw std::runtime_error(std::string("no column ") + name);
+}
+
+// ---- frictionless ---------------------------------------------------------------------------
+
+TEST(TableFrictionless, TheTiltDoesNotDependOnTheTipRadius) {
+  const InitialState s = start(150.0, 0.3, 0.1, 2.0);
+  const SampleGrid grid{1.0, 401};
+  const TableRun sharp = simulate_on_table(toy_top(0.0), table_of(Contact::Frictionless), s, grid, tight());
+  const TableRun round = simulate_on_table(toy_top(0.004), table_of(Contact::Frictionless), s, grid, tight());
+  ASSERT_EQ(sharp.trajectory.size(), grid.count);
+  ASSERT_EQ(round.trajectory.size(), grid.count);
+  const auto& a = column(sharp, "tilt");
+  const auto& b = column(round, "tilt");
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  EXPECT_LT(worst, 1e-9);
+  // The height of O is the tip's radius, the normal force near m g on average.
+  for (double h : column(round, "height")) EXPECT_DOUBLE_EQ(h, 0.004);
+}
+
+TEST(TableFrictionless, KeepsEnergyVerticalMomentumAboutGSpinAndGsVelocity) {
+  const Body body = toy_top(0.002);
+  const InitialState s = start(120.0, 0.4, -0.2, 3.0);
+  const TableRun run = simulate_on_table(body, table_of(Contact::Frictionless), s, {2.0, 201}, tight());
+  EXPECT_LT(run.summary.max_relative_energy_drift, 1e-10);
+  EXPECT_LT(run.summary.max_relative_vertical_momentum_drift, 1e-10);
+  const auto& spin = column(run, "spin");
+  for (double w : spin) EXPECT_NEAR(w, spin.front(), 1e-10 * std::abs(spin.front()));
+  // G = P + l k + r n: its horizontal position moves at the constant velocity it started with
+  // (O at rest: l (w x k)_h, w = phi_rate0 (cos theta0, 0, -sin theta0) + spin k at phi0 ...).
+  const auto& x = column(run, "x");
+  const auto& y = column(run, "y");
+  const Trajectory& tr = run.trajectory;
+  auto G = [&](std::size_t i) {
+    const double kx = std::sin(tr.theta[i]) * std::cos(tr.phi[i]), ky = -std::sin(tr.phi[i]);
+    return std::array<double, 2>{x[i] + body.length * kx, y[i] + body.length * ky};
+  };
+  const std::size_t n = tr.size();
+  const auto g0 = G(0), g1 = G(n - 1);
+  const double vx = (g1[0] - g0[0]) / tr.t[n - 1], vy = (g1[1] - g0[1]) / tr.t[n - 1];
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto g = G(i);
+    EXPECT_NEAR(g[0], g0[0] + vx * tr.t[i], 1e-11);
+    EXPECT_NEAR(g[1], g0[1] + vy * tr.t[i], 1e-11);
+  }
+}
+
+// The frictionless symmetric top on a sphere: E' = (A_G + m l^2 sin^2)/2 tilt'^2 + V(tilt) with
+// V = (L - C w3 cos)^2 / (2 A_G sin^2) + m g l cos (L the vertical momentum about G): the tilt
+// turns where V = E', whatever the radius.
+TEST(TableFrictionless, TheTiltTurnsAtTheRootsOfTheEffectiveEnergy) {
+  const Body body = toy_top(0.003);
+  const double Ag = central_moment_A(body), mgl = body.mass * body.gravity * body.length;
+  const double theta0 = 0.5, spin = 100.0;
+  const InitialState s = start(spin, theta0);
+  // Started at rest but for the spin: tilt' = 0, so theta0 is a turning point; L = C w3 cos theta0.
+  const double L = body.C * spin * std::cos(theta0);
+  auto V = [&](double a) {
+    const double d = L - body.C * spin * std::cos(a);
+    return d * d / (2.0 * Ag * std::sin(a) * std::sin(a)) + mgl * std::cos(a);
+  };
+  const double E = V(theta0);
+  boost::uintmax_t it = 200;
+  const auto root = boost::math::tools::toms748_solve([&](double a) { return V(a) - E; }, theta0 + 1e-6, 3.0,
+                                                      boost::math::tools::eps_tolerance<double>(50), it);
+  const double other = 0.5 * (root.first + root.second);
+  ASSERT_GT(other, theta0 + 0.01);
+  const TableRun run = simulate_on_table(body, table_of(Contact::Frictionless), s, {0.5, 50001}, tight());
+  const auto& tilt = column(run, "tilt");
+  // The sampled maxima, each refined by the parabola through its three samples.
+  int maxima = 0;
+  for (std::size_t i = 1; i + 1 < tilt.size(); ++i) {
+    if (!(tilt[i] > tilt[i - 1] && tilt[i] >= tilt[i + 1])) continue;
+    const double a = tilt[i - 1], b = tilt[i], c = tilt[i + 1];
+    const double peak = b + (a - c) * (a - c) / (8.0 * (2.0 * b - a - c));
+    EXPECT_NEAR(peak, other, 1e-8);
+    ++maxima;
+  }
+  EXPECT_GE(maxima, 3);
+  for (double a : tilt) EXPECT_GE(a, theta0 - 1e-9);
+}
+
+// ---- stability of the spinning states: closed forms ------------------------------------------
+
+TEST(TableStability, FrictionlessUprightNeedsCSquaredOmegaSquaredAbove4AGmgl) {
+  const Body body = toy_top(0.001);
+  const double Ag = central_moment_A(body), mgl = body.mass * body.gravity * body.length;
+  const double expected = std::sqrt(4.0 * Ag * mgl) / body.C;
+  const TableStability s = table_stability(body, table_of(Contact::Frictionless), 2.0 * expected);
+  ASSERT_TRUE(s.upright.critical_spin.has_value());
+  EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-7 * expected);
+  EXPECT_TRUE(s.upright.stable);
+  EXPECT_FALSE(s.upright.asymptotically);
+}
+
+// Rolling on a sphere of radius r (a = r + l the height of G above P): linearised,
+// I_P e'' - i w (C + m r a) e' - m g l e = 0, I_P = A_G + m a^2 (docs/table.md), so the upright
+// top is stable iff w^2 (C + m r a)^2 > 4 I_P m g l: Routh's criterion.
+TEST(TableStability, RollingUprightIsRouthsCriterion) {
+  for (double r : {0.0005, 0.003, 0.01}) {
+    const Body body = toy_top(r);
+    const double Ag = central_moment_A(body), m = body.mass, l = body.length, a = r + l;
+    const double expected = std::sqrt(4.0 * (Ag + m * a * a) * m * body.gravity * l) / (body.C + m * r * a);
+    const TableStability s = table_stability(body, table_of(Contact::Rolling), 1.5 * expected);
+    ASSERT_TRUE(s.upright.critical_spin.has_value());
+    EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-7 * expected) << "r = " << r;
+    EXPECT_TRUE(s.upright.stable);
+    // The linearisation itself, against the quadratic's roots (fixed frame; in the body frame,
+    // turning at w, each root lambda is lambda - i w).
+    const double w = 1.5 * expected, H = body.C + m * r * a, I = Ag + m * a * a;
+    const std::complex<double> disc = std::sqrt(std::complex<double>(-w * w * H * H + 4.0 * I * m * body.gravity * l));
+    const std::complex<double> lam(0.0, w * H / (2.0 * I));
+    const auto values = table_eigenvalues(body, table_of(Contact::Rolling), w, false);
+    for (std::complex<double> fixed : {lam + disc / (2.0 * I), lam - disc / (2.0 * I)}) {
+      const std::complex<double> root = fixed - std::complex<double>(0.0, w);
+      const bool found = std::any_of(values.begin(), values.end(), [&](std::complex<double> v) {
+        return std::abs(v - root) < 1e-9 * std::abs(root) || std::abs(v - std::conj(root)) < 1e-9 * std::abs(root);
+      });
+      EXPECT_TRUE(found) << "root " << root.real() << " + " << root.imag() << " i";
+    }
+  }
+}
+
+// Viscous sliding: the upright state changes stability where a root is lambda = i w r / a, a
+// motion without slip (docs/table.md), so w_c^2 = m g l a^2 / (r (C a - A_G r)) whatever mu
+// and slip_speed; above it the round-tipped top is asymptotically stable: it rises.
+TEST(TableStability, ViscousSlidingUprightChangesAtASpinFreeOfFriction) {
+  const Body body = toy_top(0.002);
+  const double Ag = central_moment_A(body), m = body.mass, l = body.length, r = body.tip_radius, a = r + l;
+  const double expected = std::sqrt(m * body.gravity * l * a * a / (r * (body.C * a - Ag * r)));
+  for (double mu : {0.05, 0.3, 2.0}) {
+    for (double slip : {0.1, 1.0}) {
+      Table t = table_of(Contact::Sliding, mu);
+      t.slip_speed = slip;
+      const TableStability s = table_stability(body, t, 1.2 * expected);
+      ASSERT_TRUE(s.upright.critical_spin.has_value());
+      EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-7 * expected) << "mu " << mu << " slip " << slip;
+      EXPECT_TRUE(s.upright.asymptotically);
+      EXPECT_FALSE(table_stability(body, t, 0.8 * expected).upright.stable);
+    }
+  }
+}
+
+// The tippe top (alpha = -l / r): inverted asymptotically stable above a spin when
+// 1 - alpha < A_G / C < 1 + alpha, upright unstable there (Bou-Rabee, Marsden and Romero 2004).
+TEST(TableStability, TheTippeTopsWindow) {
+  const Table viscous = table_of(Contact::Sliding, 0.3);
+  const TableStability in_window = table_stability(tippe_top(8e-7), viscous, 180.0);
+  EXPECT_FALSE(in_window.upright.stable);
+  EXPECT_TRUE(in_window.inverted.asymptotically);
+  // The inverted state's closed form: l -> -l, a = r (1 + alpha).
+  const Body b = tippe_top(8e-7);
+  const double Ag = central_moment_A(b), r = b.tip_radius, l = -b.length, a = r + l;
+  const double expected = std::sqrt(b.mass * b.gravity * l * a * a / (r * (b.C * a - Ag * r)));
+  ASSERT_TRUE(in_window.inverted.critical_spin.has_value());
+  EXPECT_NEAR(*in_window.inverted.critical_spin, expected, 1e-7 * expected);
+  // A_G / C above 1 + alpha = 1.2: the inverted state never stabilises.
+  const TableStability above = table_stability(tippe_top(9e-7), viscous, 180.0);
+  EXPECT_FALSE(above.inverted.stable);
+  EXPECT_FALSE(above.inverted.critical_spin.has_value());
+}
+
+// ---- sliding ----------------------------------------------------------------------------------
+
+TEST(TableSliding, KeepsJellettsIntegralWhileTheEnergyFalls) {
+  const TableRun run = simulate_on_table(tippe_top(), table_of(Contact::Sliding, 0.3), start(180.0, 0.1),
+                                         {1.0, 101}, tight());
+  EXPECT_LT(run.summary.max_relative_jellett_drift, 1e-9);
+  const auto& energy = column(run, "energy");
+  for (std::size_t i = 1; i < energy.size(); ++i) EXPECT_LE(energy[i], energy[i - 1] * (1.0 + 1e-13));
+  EXPECT_LT(energy.back(), energy.front() * 0.999);
+}
+
+TEST(TableSliding, TheTippeTopTurnsOver) {
+  const TableRun run = simulate_on_table(tippe_top(), table_of(Contact::Sliding, 0.3), start(180.0, 0.1),
+                                         {20.0, 201}, tight());
+  const auto& tilt = column(run, "tilt");
+  EXPECT_GT(tilt.back(), kPi - 0.1);
+  EXPECT_LT(run.summary.max_relative_jellett_drift, 1e-9);
+}
+
+TEST(TableSliding, ARoundTippedTopAboveItsCriticalSpinRisesToVertical) {
+  const Body body = toy_top(0.002);
+  const TableRun run = simulate_on_table(body, table_of(Contact::Sliding, 0.3), start(400.0, 0.1), {20.0, 2001});
+  const auto& tilt = column(run, "tilt");
+  EXPECT_LT(tilt.back(), 0.01);
+}
+
+// ---- rolling ----------------------------------------------------------------------------------
+
+TEST(TableRolling, KeepsEnergyAndJellett) {
+  const TableRun run = simulate_on_table(toy_top(0.003), table_of(Contact::Rolling), start(150.0, 0.3, 0.1, 2.0),
+                                         {1.0, 101}, tight());
+  EXPECT_LT(run.summary.max_relative_energy_drift, 1e-10);
+  EXPECT_LT(run.summary.max_relative_jellett_drift, 1e-10);
+  for (double v : column(run, "slip_speed")) EXPECT_EQ(v, 0.0);
+}
+
+// ---- refusals ----------------------------------------------------------------------------------
+
+TEST(TableInput, RefusesWhatTheTableCannotHold) {
+  Table t = table_of(Contact::Sliding, -0.1);
+  EXPECT_THROW(validate(t, toy_top(0.0)), InvalidInput);
+  t.friction = 0.3;
+  t.slip_speed = 0.0;
+  try {
+    validate(t, toy_top(0.0));
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "table.slip_speed");
+  }
+  Body b = toy_top(-1e-3);
+  try {
+    validate(table_of(Contact::Frictionless), b);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "body.tip_radius");
+  }
+  Body disc = toy_top(0.0);
+  disc.rim_radius = 0.02;
+  try {
+    simulate_on_table(disc, table_of(Contact::Rolling), start(10.0, 0.0), {1.0, 3});
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "motion.theta0");
+  }
+}
+
+}  // namespace
+}  // namespace heavytop
