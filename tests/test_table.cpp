@@ -154,15 +154,38 @@ TEST(TableFrictionless, TheTiltTurnsAtTheRootsOfTheEffectiveEnergy) {
 
 // ---- stability of the spinning states: closed forms ------------------------------------------
 
+// The numerical linearisation's largest real part (complex-step Jacobian, Eigen's eigenvalues),
+// over the largest eigenvalue, among the eigenvalues that are not the spin family's zero.
+double relative_growth(const Body& body, const Table& table, double spin, bool inverted = false) {
+  const auto values = table_eigenvalues(body, table, spin, inverted);
+  double largest = 0.0;
+  for (auto v : values) largest = std::max(largest, std::abs(v));
+  double growth = -HUGE_VAL;
+  for (auto v : values)
+    if (std::abs(v) > 1e-9 * largest) growth = std::max(growth, v.real());
+  return growth / largest;
+}
+
+// The closed form's spin `w` is where the linearisation changes: unstable 1e-4 below, stable
+// above (conservative: real parts zero to rounding; dissipative: negative).
+void expect_change_at(const Body& body, const Table& table, double w, bool dissipative, bool inverted = false) {
+  const double below = relative_growth(body, table, w * (1.0 - 1e-4), inverted);
+  const double above = relative_growth(body, table, w * (1.0 + 1e-4), inverted);
+  EXPECT_GT(below, dissipative ? 1e-9 : 1e-5) << "w = " << w;
+  if (dissipative) EXPECT_LT(above, -1e-9) << "w = " << w;
+  else EXPECT_LT(std::abs(above), 1e-12) << "w = " << w;
+}
+
 TEST(TableStability, FrictionlessUprightNeedsCSquaredOmegaSquaredAbove4AGmgl) {
   const Body body = toy_top(0.001);
   const double Ag = central_moment_A(body), mgl = body.mass * body.gravity * body.length;
   const double expected = std::sqrt(4.0 * Ag * mgl) / body.C;
   const TableStability s = table_stability(body, table_of(Contact::Frictionless), 2.0 * expected);
   ASSERT_TRUE(s.upright.critical_spin.has_value());
-  EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-7 * expected);
+  EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-12 * expected);
   EXPECT_TRUE(s.upright.stable);
   EXPECT_FALSE(s.upright.asymptotically);
+  expect_change_at(body, table_of(Contact::Frictionless), expected, false);
 }
 
 // Rolling on a sphere of radius r (a = r + l the height of G above P): linearised,
@@ -175,8 +198,9 @@ TEST(TableStability, RollingUprightIsRouthsCriterion) {
     const double expected = std::sqrt(4.0 * (Ag + m * a * a) * m * body.gravity * l) / (body.C + m * r * a);
     const TableStability s = table_stability(body, table_of(Contact::Rolling), 1.5 * expected);
     ASSERT_TRUE(s.upright.critical_spin.has_value());
-    EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-7 * expected) << "r = " << r;
+    EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-12 * expected) << "r = " << r;
     EXPECT_TRUE(s.upright.stable);
+    expect_change_at(body, table_of(Contact::Rolling), expected, false);
     // The linearisation itself, against the quadratic's roots (fixed frame; in the body frame,
     // turning at w, each root lambda is lambda - i w).
     const double w = 1.5 * expected, H = body.C + m * r * a, I = Ag + m * a * a;
@@ -206,8 +230,9 @@ TEST(TableStability, ViscousSlidingUprightChangesAtASpinFreeOfFriction) {
       t.slip_speed = slip;
       const TableStability s = table_stability(body, t, 1.2 * expected);
       ASSERT_TRUE(s.upright.critical_spin.has_value());
-      EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-7 * expected) << "mu " << mu << " slip " << slip;
+      EXPECT_NEAR(*s.upright.critical_spin, expected, 1e-12 * expected) << "mu " << mu << " slip " << slip;
       EXPECT_TRUE(s.upright.asymptotically);
+      expect_change_at(body, t, expected, true);
       EXPECT_FALSE(table_stability(body, t, 0.8 * expected).upright.stable);
     }
   }
@@ -225,11 +250,21 @@ TEST(TableStability, TheTippeTopsWindow) {
   const double Ag = central_moment_A(b), r = b.tip_radius, l = -b.length, a = r + l;
   const double expected = std::sqrt(b.mass * b.gravity * l * a * a / (r * (b.C * a - Ag * r)));
   ASSERT_TRUE(in_window.inverted.critical_spin.has_value());
-  EXPECT_NEAR(*in_window.inverted.critical_spin, expected, 1e-7 * expected);
+  EXPECT_NEAR(*in_window.inverted.critical_spin, expected, 1e-12 * expected);
+  expect_change_at(b, viscous, expected, true, /*inverted=*/true);
   // A_G / C above 1 + alpha = 1.2: the inverted state never stabilises.
   const TableStability above = table_stability(tippe_top(9e-7), viscous, 180.0);
   EXPECT_FALSE(above.inverted.stable);
   EXPECT_FALSE(above.inverted.critical_spin.has_value());
+}
+
+// A sharp tip sliding has no rising torque: the upright state is unstable at every spin, slowly
+// at high spins (a real part like w^-4), which the closed form's missing change says exactly.
+TEST(TableStability, ASharpTipSlidingIsNeverStable) {
+  const TableStability s = table_stability(toy_top(0.0), table_of(Contact::Sliding, 0.3), 400.0);
+  EXPECT_FALSE(s.upright.stable);
+  EXPECT_TRUE(s.upright.stable_spin_intervals.empty());
+  for (double w : {50.0, 500.0, 5000.0}) EXPECT_GT(relative_growth(toy_top(0.0), table_of(Contact::Sliding, 0.3), w), 1e-14);
 }
 
 // ---- sliding ----------------------------------------------------------------------------------
@@ -256,6 +291,78 @@ TEST(TableSliding, ARoundTippedTopAboveItsCriticalSpinRisesToVertical) {
   const TableRun run = simulate_on_table(body, table_of(Contact::Sliding, 0.3), start(400.0, 0.1), {20.0, 2001});
   const auto& tilt = column(run, "tilt");
   EXPECT_LT(tilt.back(), 0.01);
+}
+
+// ---- the answer on a table --------------------------------------------------------------------
+
+TEST(TableAnswer, TheTippeTopTurnsOverAllTheWay) {
+  const TableAnalysis an = analyse_top_on_table(tippe_top(), table_of(Contact::Sliding, 0.3), start(180.0, 0.1));
+  const TableAnswer& a = an.answer;
+  EXPECT_EQ(a.verdict, AnswerVerdict::TurnsOver);
+  EXPECT_TRUE(a.proven);
+  ASSERT_TRUE(a.turns_over_at.has_value());
+  EXPECT_GT(*a.turns_over_at, 2.0);
+  EXPECT_LT(*a.turns_over_at, 10.0);
+  EXPECT_TRUE(a.ends_upside_down);
+  // Jellett's integral L . s, C w r (1 - alpha) at the start and -C w' r (1 + alpha) upside down
+  // (w' = w . k), with the small start tilt's share: the spin falls to w (1 - alpha) / (1 + alpha).
+  EXPECT_NEAR(a.final_spin, -180.0 * 0.8 / 1.2, 0.01 * 120.0);
+}
+
+// Above 1 + alpha the tippe top turns part way and spins tilted at the state where it rolls
+// without slipping and precesses: w . k = W (cos - alpha) (no slip), and the torque about G,
+// W (C w.k - A_G W cos) = m g l, give W^2 C ((gamma - 1) cos + alpha) = m g alpha r (docs/table.md).
+TEST(TableAnswer, AboveTheWindowTheTippeTopSpinsTiltedAtItsSteadyState) {
+  const Body b = tippe_top(9e-7);
+  const TableAnalysis an = analyse_top_on_table(b, table_of(Contact::Sliding, 0.3), start(180.0, 0.1));
+  const TableAnswer& a = an.answer;
+  EXPECT_EQ(a.verdict, AnswerVerdict::TurnsOver);
+  EXPECT_FALSE(a.ends_upside_down);
+  const double alpha = 0.2, gamma = 9.0 / 7.0, c = std::cos(a.final_tilt), W = a.final_spin / (c - alpha);
+  EXPECT_NEAR(W * W * b.C * ((gamma - 1.0) * c + alpha), b.mass * b.gravity * alpha * b.tip_radius,
+              1e-6 * b.mass * b.gravity * alpha * b.tip_radius);
+  EXPECT_GT(a.final_tilt, 1.6);
+  EXPECT_LT(a.final_tilt, 3.0);
+}
+
+TEST(TableAnswer, BelowTheWindowTheTippeTopNeverPassesAQuarterTurn) {
+  const TableAnalysis an = analyse_top_on_table(tippe_top(5e-7), table_of(Contact::Sliding, 0.3), start(180.0, 0.1));
+  EXPECT_LT(an.answer.max_tilt, 1.5707963267948966);
+  EXPECT_FALSE(an.answer.turns_over_at.has_value());
+}
+
+// The round-tipped toy top above its viscous critical spin rises and sleeps; its tilt's decay
+// near upright is the linearisation's slowest rate.
+TEST(TableAnswer, TheRisingTopSleepsAtTheRateOfItsSlowestMode) {
+  const Body body = toy_top(0.002);
+  const Table t = table_of(Contact::Sliding, 0.3);
+  const TableAnalysis an = analyse_top_on_table(body, t, start(400.0, 0.1));
+  EXPECT_EQ(an.answer.verdict, AnswerVerdict::StaysUp);
+  ASSERT_TRUE(an.answer.upright_at.has_value());
+  EXPECT_TRUE(an.answer.upright_attracts);
+  // The decay of the tilt's envelope between two late windows against the least negative real part.
+  const TableRun run = simulate_on_table(body, t, start(400.0, 0.1), {30.0, 30001}, tight());
+  const auto& tilt = column(run, "tilt");
+  auto envelope = [&](double from) {
+    double top = 0.0;
+    for (std::size_t i = 0; i < tilt.size(); ++i)
+      if (run.trajectory.t[i] >= from && run.trajectory.t[i] < from + 1.0) top = std::max(top, tilt[i]);
+    return top;
+  };
+  const double rate = std::log(envelope(25.0) / envelope(15.0)) / 10.0;
+  const auto values = table_eigenvalues(body, t, column(run, "spin").back(), false);
+  double slowest = -HUGE_VAL;
+  for (auto v : values)
+    if (std::abs(v) > 1e-9) slowest = std::max(slowest, v.real());
+  ASSERT_LT(slowest, 0.0);
+  EXPECT_NEAR(rate, slowest, 0.02 * std::abs(slowest));
+}
+
+TEST(TableAnswer, ASlowRoundTippedTopFalls) {
+  const TableAnalysis an = analyse_top_on_table(toy_top(0.002), table_of(Contact::Sliding, 0.3), start(100.0, 0.1));
+  EXPECT_EQ(an.answer.verdict, AnswerVerdict::Falls);
+  ASSERT_TRUE(an.answer.falls_at.has_value());
+  EXPECT_NEAR(an.answer.final_tilt, 1.0, 1e-8);
 }
 
 // ---- rolling ----------------------------------------------------------------------------------

@@ -24,8 +24,10 @@ enum class AnswerVerdict {
   StaysUp,            ///< "stays up": proven (the Lyapunov verdict is stable)
   Falls,              ///< "falls": the computed nonlinear motion tilts past max_tilt
   StaysUpForHorizon,  ///< "stays up for the horizon": it did not fall in the run, not proven
+  TurnsOver,          ///< "turns over": on a table, the tilt passes pi/2 (a tippe top; SPEC 16)
+  LeavesTable,        ///< "leaves the table": on a table, the normal force reaches 0 (SPEC 16)
 };
-/// "stays up" | "falls" | "stays up for the horizon".
+/// "stays up" | "falls" | "stays up for the horizon" | "turns over" | "leaves the table".
 std::string_view name(AnswerVerdict verdict);
 
 /// Why the answer is what it is (for the words; not part of the JSON).
@@ -52,6 +54,10 @@ struct AnswerOptions {
   /// "max_tilt").
   bool IsValid(std::string* why) const;
 };
+
+/// Throws InvalidInput for the first setting out of range (AnswerOptions::IsValid's keys, then
+/// the integrator's tolerances').
+void validate(const AnswerOptions& options);
 
 /// The answer (SPEC section 14's `answer` object, and what the words need).
 struct Answer {

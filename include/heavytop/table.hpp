@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "heavytop/answer.hpp"
 #include "heavytop/body.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/progress.hpp"
@@ -140,5 +141,50 @@ TableStability table_stability(const Body& body, const Table& table, double spin
 /// The eigenvalues (1/s) of the linearisation at `spin` of the upright (`inverted` false) or
 /// inverted state, as table_stability() computes them.
 std::vector<std::complex<double>> table_eigenvalues(const Body& body, const Table& table, double spin, bool inverted);
+
+/// The tilt (rad) below which a top on a table counts as upright and asleep (SPEC 16's
+/// `upright_at`), and within which of pi a turned-over body counts as upside down.
+inline constexpr double kSleepingTilt = 0.01;
+inline constexpr double kUpsideDownWithin = 0.1;
+
+/// The answer on a table (SPEC sections 14 and 16), from the computed motion: the numbers only
+/// (io/ puts them into words).
+struct TableAnswer {
+  AnswerVerdict verdict = AnswerVerdict::StaysUpForHorizon;
+  bool proven = false;          ///< a computed event (falls, turns over, leaves the table)
+  double spin = 0.0;            ///< rad/s, w0
+  double start_tilt = 0.0;      ///< rad
+  double max_tilt = 0.0;        ///< rad, the largest tilt of the run
+  double final_tilt = 0.0;      ///< rad, at the run's end
+  double final_spin = 0.0;      ///< rad/s, w . k at the run's end
+  double fall_threshold = 1.0;  ///< rad, AnswerOptions::max_tilt (a fall needs length > 0)
+  std::optional<double> falls_at;       ///< s, the tilt passes fall_threshold from below
+  std::optional<double> upright_at;     ///< s, from then on the tilt stays below kSleepingTilt
+  std::optional<double> turns_over_at;  ///< s, the tilt passes pi/2
+  std::optional<double> leaves_at;      ///< s, the normal force reaches 0
+  bool ends_upside_down = false;        ///< turned over and ends within kUpsideDownWithin of pi
+  double horizon = 0.0;         ///< s, the run's horizon (AnswerOptions::horizon)
+  double end_time = 0.0;        ///< s, where the run ended (the horizon, a fall or leaving)
+  double track = 0.0;           ///< m, the largest distance of P from where it started
+  /// rad/s, the upright state's critical spin on this table (TableStability), nullopt if none.
+  std::optional<double> min_spin;
+  /// The upright state is asymptotically stable at the run's final spin (with upright_at: the
+  /// top has risen to a state that attracts its neighbourhood; Lyapunov's first method).
+  bool upright_attracts = false;
+};
+
+/// Everything `stability` says on a table, computed once.
+struct TableAnalysis {
+  double spin = 0.0;           ///< rad/s
+  TableStability stability;    ///< table_stability(body, table, spin)
+  TableAnswer answer;          ///< from the motion over options.horizon
+};
+
+/// The table's stability at the spin of `initial` and the answer from the motion followed
+/// over options.horizon at options.integrator's tolerances, its events (leaving, falling past
+/// options.max_tilt for a body with length > 0, turning over, rising to sleep) located on the
+/// dense output to 1e-9 s. Throws InvalidInput for bad input, std::runtime_error for a failed run.
+TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const InitialState& initial,
+                                   const AnswerOptions& options = {});
 
 }  // namespace heavytop

@@ -43,6 +43,8 @@ std::string_view name(AnswerVerdict verdict) {
   switch (verdict) {
     case AnswerVerdict::StaysUp: return "stays up";
     case AnswerVerdict::Falls: return "falls";
+    case AnswerVerdict::TurnsOver: return "turns over";
+    case AnswerVerdict::LeavesTable: return "leaves the table";
     case AnswerVerdict::StaysUpForHorizon: break;
   }
   return "stays up for the horizon";
@@ -52,10 +54,14 @@ bool AnswerOptions::IsValid(std::string* why) const {
   return detail::is_valid(first_violation(*this), why) && integrator.IsValid(why);
 }
 
-Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
-                       const Wander& wander, const AnswerOptions& options) {
+void validate(const AnswerOptions& options) {
   detail::throw_if_invalid(first_violation(options));
   validate(options.integrator);
+}
+
+Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
+                       const Wander& wander, const AnswerOptions& options) {
+  validate(options);
   Answer a;
   a.spin = initial.spin;
   a.start_tilt = tilt(initial.theta0, initial.phi0);

@@ -375,4 +375,130 @@ TableRun simulate_on_table(const Body& body, const Table& table, const InitialSt
   return run;
 }
 
+namespace {
+
+// The tilt of state y (rad): k = R(q) e3 from q itself.
+double tilt_of(const TableVector& y) {
+  const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
+  return tilt_of_axis(2.0 * (qx * qz + qw * qy), 2.0 * (qy * qz - qw * qx), qw * qw - qx * qx - qy * qy + qz * qz);
+}
+
+// The answer's watch over one run: the tilt's crossings of its levels located on the dense output,
+// the track of P.
+class AnswerWatch {
+ public:
+  AnswerWatch(const TableParameters& p, TableAnswer& answer, double start_tilt) : p_(p), a_(answer), tilt_(start_tilt) {
+    if (start_tilt < kSleepingTilt) below_since_ = 0.0;
+  }
+
+  // Returns false once the answer is decided (a fall).
+  bool step(const detail::TableIntegration::StepView& view) {
+    constexpr int kPoints = 4;  // per step: a step spans a fraction of the fastest turn
+    TableVector y;
+    for (int j = 1; j <= kPoints; ++j) {
+      const double t = j == kPoints ? view.t1 : view.t0 + (view.t1 - view.t0) * j / kPoints;
+      view.state_at(t, y);
+      const double tilt = tilt_of(y);
+      const Instant in = instant_of(p_, y);
+      const V3 P = V3(y[7], y[8], 0.0) - in.R * in.geometry.s;
+      a_.track = std::max(a_.track, std::hypot(P[0], P[1]));
+      a_.max_tilt = std::max(a_.max_tilt, tilt);
+      const double t_before = t_;
+      const double before = tilt_;
+      auto crossing = [&](double level) { return locate(view, t_before, t, level); };
+      if (!a_.turns_over_at && before < kHalfPi && tilt >= kHalfPi) a_.turns_over_at = crossing(kHalfPi);
+      if (before >= kSleepingTilt && tilt < kSleepingTilt) below_since_ = crossing(kSleepingTilt);
+      if (before < kSleepingTilt && tilt >= kSleepingTilt) below_since_.reset();
+      const bool can_fall = p_.length > 0.0 && a_.start_tilt < a_.fall_threshold;
+      if (can_fall && !a_.falls_at && before < a_.fall_threshold && tilt >= a_.fall_threshold) {
+        a_.falls_at = crossing(a_.fall_threshold);
+        view.state_at(*a_.falls_at, y);
+        finish(*a_.falls_at, y);
+        return false;
+      }
+      t_ = t;
+      tilt_ = tilt;
+      finish(t, y);
+    }
+    return true;
+  }
+
+  std::optional<double> sleeping_since() const { return below_since_; }
+
+ private:
+  static constexpr double kHalfPi = 1.5707963267948966;
+
+  void finish(double t, const TableVector& y) {
+    a_.end_time = t;
+    a_.final_tilt = tilt_of(y);
+    a_.final_spin = y[6];
+  }
+
+  double locate(const detail::TableIntegration::StepView& view, double a, double b, double level) const {
+    TableVector y;
+    auto f = [&](double t) {
+      view.state_at(t, y);
+      return tilt_of(y) - level;
+    };
+    const double fa = f(a), fb = f(b);
+    if (fa == 0.0) return a;
+    if (fb == 0.0 || (fa > 0.0) == (fb > 0.0)) return b;  // at the ends' rounding
+    boost::uintmax_t iterations = 100;
+    const auto r = boost::math::tools::toms748_solve(
+        f, a, b, fa, fb, [](double x, double z) { return std::abs(z - x) <= 1e-10; }, iterations);
+    return 0.5 * (r.first + r.second);
+  }
+
+  const TableParameters& p_;
+  TableAnswer& a_;
+  double t_ = 0.0, tilt_;
+  std::optional<double> below_since_;
+};
+
+}  // namespace
+
+TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const InitialState& initial,
+                                   const AnswerOptions& options) {
+  validate(options);
+  TableAnalysis out;
+  out.spin = initial.spin;
+  out.stability = table_stability(body, table, initial.spin);
+  TableAnswer& a = out.answer;
+  a.spin = initial.spin;
+  a.fall_threshold = options.max_tilt;
+  a.horizon = options.horizon;
+  a.min_spin = out.stability.upright.critical_spin;
+  detail::TableIntegration integration(body, table, initial, options.horizon, options.integrator);
+  a.start_tilt = a.max_tilt = a.final_tilt = tilt_of(integration.initial_state());
+  a.final_spin = initial.spin;
+  AnswerWatch watch(integration.parameters(), a, a.start_tilt);
+  TableSummary summary;
+  integration.run(summary, [&](const detail::TableIntegration::StepView& view) { return watch.step(view); });
+  if (summary.end == TableSummary::End::LeftTable) {
+    a.leaves_at = summary.end_time;
+    a.end_time = summary.end_time;
+  }
+  if (!a.falls_at && !a.leaves_at) a.upright_at = watch.sleeping_since();
+  a.ends_upside_down = a.turns_over_at && std::abs(a.final_tilt - 3.141592653589793) < kUpsideDownWithin;
+  if (a.upright_at) {
+    const auto upright = table_stability(body, table, a.final_spin).upright;
+    a.upright_attracts = upright.asymptotically;
+  }
+  if (a.leaves_at) {
+    a.verdict = AnswerVerdict::LeavesTable;
+    a.proven = true;
+  } else if (a.falls_at) {
+    a.verdict = AnswerVerdict::Falls;
+    a.proven = true;
+  } else if (a.turns_over_at) {
+    a.verdict = AnswerVerdict::TurnsOver;
+    a.proven = true;
+  } else if (a.upright_at) {
+    a.verdict = AnswerVerdict::StaysUp;  // risen and asleep; the words say what is and is not proven
+  } else {
+    a.verdict = AnswerVerdict::StaysUpForHorizon;
+  }
+  return out;
+}
+
 }  // namespace heavytop

@@ -71,8 +71,10 @@ std::vector<Cx> eigenvalues_of(const TableParameters& p, bool inverted, double s
 
 // The scale of the eigenvalues below which a real part counts as zero: rounding in the
 // eigensolver of a matrix of this size (1/s). Where friction makes a real part cross zero
-// linearly in the spin, the stable spins' ends move by this over the crossing's slope: 1e-11
-// of the largest eigenvalue puts them within 1e-8 relative of the closed forms (tests).
+// linearly in the spin, a scanned end moves by this over the crossing's slope (1e-11 of the
+// largest eigenvalue: within 1e-7 relative of the closed forms, tests); a real part that
+// vanishes faster than the spin grows (a sharp tip sliding: like w^-4) is lost below it at
+// spins far above any top's, which is why the symmetric body's ends are the closed forms.
 double zero_scale(const std::vector<Cx>& values) {
   double largest = 0.0;
   for (Cx v : values) largest = std::max(largest, std::abs(v));
@@ -104,6 +106,78 @@ double spin_scale(const TableParameters& p) {
   return std::isfinite(w) && w > 0.0 ? w : 1.0;
 }
 
+// The spins (rad/s) where a symmetric body on a sphere changes stability, in closed form
+// (docs/table.md; the tests check each against the numerical linearisation): nullopt for the
+// bodies that have none (A != B), an empty list where no spin changes it. The inverted state
+// is the upright one of the body turned over: l -> -l.
+std::optional<std::vector<double>> closed_form_changes(const TableParameters& p, bool inverted) {
+  if (p.Ag != p.Bg || p.rim_radius > 0.0) return std::nullopt;
+  const double l = inverted ? -p.length : p.length, r = p.tip_radius, a = r + l, m = p.mass, g = p.gravity;
+  double w2 = -1.0;  // the square of the spin that changes it, if > 0
+  switch (p.contact) {
+    case Contact::Frictionless:  // C^2 w^2 = 4 A_G m g l
+      w2 = 4.0 * p.Ag * m * g * l / (p.C * p.C);
+      break;
+    case Contact::Rolling: {  // Routh: w^2 (C + m r a)^2 = 4 (A_G + m a^2) m g l
+      const double H = p.C + m * r * a;
+      w2 = 4.0 * (p.Ag + m * a * a) * m * g * l / (H * H);
+      break;
+    }
+    case Contact::Sliding:  // a root crosses at i w r / a, without slip: w^2 = m g l a^2 / (r (C a - A_G r))
+      if (r > 0.0 && p.friction > 0.0) w2 = m * g * l * a * a / (r * (p.C * a - p.Ag * r));
+      else if (p.friction == 0.0) w2 = 4.0 * p.Ag * m * g * l / (p.C * p.C);  // frictionless
+      break;
+    case Contact::Pivot: break;
+  }
+  std::vector<double> changes;
+  if (std::isfinite(w2) && w2 > 0.0) changes.push_back(std::sqrt(w2));
+  return changes;
+}
+
+// The spins w >= 0 where the state is stable, as [lo, hi or above] intervals. Each interval
+// between the spins that change the verdict (closed form, or else a geometric scan from 1e-3
+// to 1e4 times the spin scale with each change bisected) takes the verdict of the eigenvalues
+// at a spin inside it.
+std::vector<std::pair<double, std::optional<double>>> stable_spins(const TableParameters& p, bool inverted) {
+  auto stable_at = [&](double w) { return verdict_of(eigenvalues_of(p, inverted, w)).stable; };
+  std::vector<double> changes;
+  if (auto closed = closed_form_changes(p, inverted)) {
+    changes = *closed;
+  } else {
+    const double scale = spin_scale(p);
+    constexpr int kPoints = 700;
+    double previous_w = 0.0;
+    bool previous = stable_at(0.0);
+    for (int i = 0; i <= kPoints; ++i) {
+      const double w = scale * std::pow(10.0, -3.0 + 7.0 * i / kPoints);
+      const bool now = stable_at(w);
+      if (now != previous) {
+        double a = previous_w, b = w;
+        for (int k = 0; k < 200 && b - a > 1e-14 * b; ++k) {
+          const double mid = 0.5 * (a + b);
+          (stable_at(mid) == previous ? a : b) = mid;
+        }
+        changes.push_back(0.5 * (a + b));
+      }
+      previous = now;
+      previous_w = w;
+    }
+  }
+  std::vector<std::pair<double, std::optional<double>>> intervals;
+  const double first_probe = changes.empty() ? spin_scale(p) : 0.5 * changes.front();
+  for (std::size_t i = 0; i <= changes.size(); ++i) {
+    const double lo = i == 0 ? 0.0 : changes[i - 1];
+    const std::optional<double> hi = i < changes.size() ? std::optional<double>(changes[i]) : std::nullopt;
+    const double probe = i == 0 ? first_probe : hi ? std::sqrt(lo * *hi) : 2.0 * lo;
+    if (!stable_at(probe)) continue;
+    if (!intervals.empty() && intervals.back().second && *intervals.back().second == lo)
+      intervals.back().second = hi;  // no change after all: one interval
+    else
+      intervals.push_back({lo, hi});
+  }
+  return intervals;
+}
+
 SpinningStateStability state_stability(const TableParameters& p, bool inverted, double spin) {
   SpinningStateStability s;
   if (p.rim_radius > 0.0) {
@@ -115,37 +189,9 @@ SpinningStateStability state_stability(const TableParameters& p, bool inverted, 
   s.stable = v.stable;
   s.asymptotically = v.asymptotically;
   s.growth_rate = v.growth_rate;
-  // The spins where it is stable: 0, then a geometric grid from 1e-3 to 1e4 times the spin
-  // scale (above it the verdict of the last point is taken to hold), each change bisected.
-  auto stable_at = [&](double w) { return verdict_of(eigenvalues_of(p, inverted, w)).stable; };
-  const double scale = spin_scale(p);
-  std::vector<double> grid{0.0};
-  constexpr int kPoints = 700;
-  for (int i = 0; i <= kPoints; ++i) grid.push_back(scale * std::pow(10.0, -3.0 + 7.0 * i / kPoints));
-  bool previous = stable_at(grid[0]);
-  std::optional<double> lo;
-  if (previous) lo = 0.0;
-  for (std::size_t i = 1; i < grid.size(); ++i) {
-    const bool now = stable_at(grid[i]);
-    if (now == previous) continue;
-    double a = grid[i - 1], b = grid[i];
-    for (int k = 0; k < 200 && b - a > 1e-14 * b; ++k) {
-      const double mid = 0.5 * (a + b);
-      (stable_at(mid) == previous ? a : b) = mid;
-    }
-    const double edge = 0.5 * (a + b);
-    if (now) {
-      lo = edge;
-    } else {
-      s.stable_spin_intervals.push_back({*lo, edge});
-      lo.reset();
-    }
-    previous = now;
-  }
-  if (lo) {
-    s.stable_spin_intervals.push_back({*lo, std::nullopt});
-    s.critical_spin = *lo;
-  }
+  s.stable_spin_intervals = stable_spins(p, inverted);
+  if (!s.stable_spin_intervals.empty() && !s.stable_spin_intervals.back().second)
+    s.critical_spin = s.stable_spin_intervals.back().first;
   return s;
 }
 
