@@ -132,6 +132,31 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses us
                          ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
                          ->default_str(fmt::format("0; toy top alone: {:.6g}", rpm_from_rad_per_s(motion.spin)))
                          ->group(used("Motion") ? "Motion" : "");
+  if (uses_.table) {
+    TableOptions& t = table_options_;
+    const auto number = [&](Override& o, const char* name, const char* help, const char* group) {
+      o.option = command.add_option(name, o.value, help)
+                     ->type_name("NUM")
+                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                     ->group(group);
+    };
+    number(t.tip_radius, "--tip-radius", "m, radius of the tip's sphere about O (>= 0; 0: a sharp point)", "Body");
+    number(t.rim_radius, "--rim-radius", "m, or of the rim, a ring about the axis through O (>= 0; a coin)", "Body");
+    t.contact = command.add_option("--contact", t.contact_value,
+                                   "pivot (O fixed), or the body on a table: frictionless, rolling or sliding")
+                    ->type_name("NAME")
+                    ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                    ->default_str("pivot")
+                    ->group("Table");
+    number(t.friction, "--table-friction", "mu, the table's friction coefficient (sliding; >= 0)", "Table");
+    t.friction_law = command.add_option("--friction-law", t.friction_law_value,
+                                        "sliding: viscous (F = -mu N v / slip_speed) or coulomb")
+                         ->type_name("NAME")
+                         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                         ->default_str("viscous")
+                         ->group("Table");
+    number(t.slip_speed, "--slip-speed", "m/s, the viscous law's reference speed (> 0, default 1)", "Table");
+  }
   command.add_option("--format", format_, "output format")
       ->check(CLI::IsMember(formats))
       ->default_str(formats.front());
@@ -199,7 +224,9 @@ void Inputs::resolve(bool allow_general) {
     *io::config_field(body, state, key) = o.value;
   }
   if (driven_->count()) body.damping.driven = driven_value_;
+  Table table = resolve_table(body);
   const Damping damping = body.damping;  // the parts below make the body's mass properties only
+  const double tip_radius = body.tip_radius, rim_radius = body.rim_radius;  // the shape, not the mass
   if (!config_.parts.empty()) {
     assembly_ = io::assemble_parts(config_.parts);
     if (!allow_general) {
@@ -229,8 +256,11 @@ void Inputs::resolve(bool allow_general) {
     if (!allow_general) io::refuse_general_keys(body);
   }
   body.damping = damping;
+  body.tip_radius = tip_radius;
+  body.rim_radius = rim_radius;
   validate(body);
   validate(state);
+  if (table.on_table()) validate(table, body);
   if (!is_realizable(body))  // SPEC section 1: said once when the command has done its work
     realizability_warning() = (body.general.is_zero()
                       ? fmt::format("heavytop: warning: this body cannot exist as given: A + B - C = {:.6g} kg m^2 is "
@@ -244,6 +274,27 @@ void Inputs::resolve(bool allow_general) {
                                     "inertia about the centre of mass break the triangle inequality; going on\n"));
   body_ = body;
   state_ = state;
+  table_ = table;
+}
+
+Table Inputs::resolve_table(Body& body) const {
+  // [table] from the file, then the command line's table options over it, checked as one.
+  io::Configuration merged = config_;
+  const TableOptions& t = table_options_;
+  if (uses_.table) {
+    if (t.contact->count()) merged.settings["table.contact"] = t.contact_value;
+    if (t.friction_law->count()) merged.settings["table.friction_law"] = t.friction_law_value;
+    if (t.friction.option->count()) merged.settings["table.friction"] = t.friction.value;
+    if (t.slip_speed.option->count()) merged.settings["table.slip_speed"] = t.slip_speed.value;
+    if (t.tip_radius.option->count()) body.tip_radius = t.tip_radius.value;
+    if (t.rim_radius.option->count()) body.rim_radius = t.rim_radius.value;
+  }
+  const Table table = io::table_of(merged);
+  if (table.on_table() && !uses_.table)
+    throw InvalidInput("table.contact", fmt::format("`heavytop {}` is for a body on a pivot; on a table (contact = "
+                                                    "\"{}\") use `heavytop simulate` or `heavytop stability`",
+                                                    command_name_, name(table.contact)));
+  return table;
 }
 
 void Inputs::refuse_general(const std::string& what) const {

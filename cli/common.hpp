@@ -60,6 +60,10 @@ CLI::Validator positive_count();
 struct InputUses {
   bool motion = true;
   bool damping = true;
+  /// The table (SPEC section 16): --contact, --table-friction, --friction-law, --slip-speed,
+  /// --tip-radius, --rim-radius over [table]. A command without it refuses a contact other than
+  /// "pivot" (key table.contact), whatever the file says.
+  bool table = false;
 };
 
 /// The body and motion as given on the command line and in --config, merged.
@@ -84,6 +88,8 @@ class Inputs {
 
   const Body& body() const { return body_; }
   const InitialState& state() const { return state_; }
+  /// The table under the body (the pivot unless [table] or --contact says otherwise).
+  const Table& table() const { return table_; }
   const std::string& format() const { return format_; }
   const std::string& output() const { return output_; }
   /// --config as given ("" without one: the built-in example is the base).
@@ -101,6 +107,7 @@ class Inputs {
     CLI::Option* option = nullptr;
     double value = 0.0;
   };
+  Table resolve_table(Body& body) const;
   CLI::App* command_ = nullptr;                 // its options' values are checked in resolve()
   std::string config_path_;
   std::string command_name_;
@@ -112,6 +119,15 @@ class Inputs {
   CLI::Option* driven_ = nullptr;              // --driven (motion.driven, a boolean)
   bool driven_value_ = false;
   Override spin_rpm_;                           // --spin-rpm (SPEC section 9)
+  struct TableOptions {                         // InputUses::table
+    CLI::Option* contact = nullptr;
+    std::string contact_value;
+    CLI::Option* friction_law = nullptr;
+    std::string friction_law_value;
+    Override friction, slip_speed, tip_radius, rim_radius;
+  };
+  TableOptions table_options_;
+  Table table_;
   io::AssembledBody assembly_;
   io::Configuration config_;
   Body body_;

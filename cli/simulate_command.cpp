@@ -13,6 +13,7 @@
 #include "heavytop/io/formats.hpp"
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/simulate.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::cli {
 namespace {
@@ -47,12 +48,38 @@ std::string flag_spelling(std::string_view key) {
 // --format json holds the whole trajectory (11 columns of doubles, then the text) in memory.
 constexpr long long kMaxJsonSamples = 2'000'000;
 
+// The body on a table (SPEC section 16): the nonlinear model only, by DOP853; the run ends
+// early, with one line on stderr, when the body leaves the table.
+void run_on_table(const Inputs& inputs, const SimulateFlags& o, Model model) {
+  const Table& table = inputs.table();
+  if (model != Model::Nonlinear)
+    throw InvalidInput("table.contact", fmt::format("--model {} is the pivot's (SPEC section 16): on a table (contact = "
+                                                    "\"{}\") use --model nonlinear",
+                                                    name(model), name(table.contact)));
+  if (o.integrator != "auto" && o.integrator != "dop853")
+    throw InvalidInput("--integrator", fmt::format("on a table (contact = \"{}\") the body is integrated by dop853 "
+                                                   "(or auto, which is it there)",
+                                                   name(table.contact)));
+  ProgressBar bar("simulate", o.t_end);
+  const Progress progress = [&bar](double t) { bar.update(t); };
+  const SampleGrid grid{o.t_end, static_cast<std::size_t>(o.samples)};
+  io::OutputStream out(inputs.output(), "--output");
+  const TableRun run = simulate_on_table(inputs.body(), table, inputs.state(), grid, o.options.adaptive, progress);
+  out.write(inputs.format() == "json" ? io::table_trajectory_json(inputs.body(), table, inputs.state(), run)
+                                      : io::trajectory_csv(run.trajectory));
+  if (run.summary.end == TableSummary::End::LeftTable)
+    std::cerr << fmt::format("heavytop: the body leaves the table at t = {:.9g} s\n", run.summary.end_time);
+  out.commit();
+}
+
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "simulate", "The motion of one model: CSV columns t,theta,phi,theta_rate,phi_rate (SI units)");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv", "json"});
+  InputUses uses;
+  uses.table = true;
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"csv", "json"}, uses);
   auto o = std::make_shared<SimulateFlags>();
   std::vector<std::string> models;
   for (Model m : kModels) models.emplace_back(name(m));
@@ -144,6 +171,10 @@ Action add_simulate_command(CLI::App& app) {
       o->options.adaptive.max_steps = o->options.splitting.max_steps = static_cast<std::size_t>(o->max_steps);
     }
 
+    if (inputs->table().on_table()) {
+      run_on_table(*inputs, *o, *model);
+      return;
+    }
     ProgressBar bar("simulate", o->t_end);
     const Progress progress = [&bar](double t) { bar.update(t); };
     const SampleGrid grid{o->t_end, static_cast<std::size_t>(o->samples)};

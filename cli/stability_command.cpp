@@ -11,6 +11,7 @@
 #include "heavytop/answer.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::cli {
 
@@ -18,7 +19,9 @@ Action add_stability_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "stability", "Linear stability of the first-order, body-fixed and linearized models at a spin, "
                    "and the real body's Lyapunov verdict");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
+  InputUses uses;
+  uses.table = true;
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"}, uses);
   auto options = std::make_shared<AnswerOptions>();
   auto lifetime_horizon = std::make_shared<std::optional<double>>();
   cmd->add_option("--horizon", options->horizon,
@@ -40,6 +43,14 @@ Action add_stability_command(CLI::App& app) {
       throw InvalidInput("--lifetime-horizon", "must be a finite number > 0");
     options->damped_horizon = *lifetime_horizon;
     const Body& body = inputs->body();
+    if (const Table& table = inputs->table(); table.on_table()) {  // SPEC section 16
+      const TableAnalysis analysis = analyse_top_on_table(body, table, inputs->state(), *options);
+      write_output(inputs->output(),
+                   inputs->format() == "json"
+                       ? io::table_stability_json(body, table, analysis, analyse_stability(body, analysis.spin))
+                       : io::table_stability_text(body, table, analysis));
+      return;
+    }
     const TopAnalysis analysis = analyse_top(body, inputs->state(), *options);
     write_output(inputs->output(), inputs->format() == "json" ? io::stability_json(body, analysis)
                                                               : io::stability_text(body, analysis));

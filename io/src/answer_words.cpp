@@ -128,6 +128,76 @@ std::string answer_text(const Answer& a) {
   return answer_headline(a) + " " + answer_reason(a) + " " + answer_advice(a);
 }
 
+// ---- on a table (SPEC section 16) --------------------------------------------------------------
+
+std::string contact_words(const Table& t) {
+  switch (t.contact) {
+    case Contact::Frictionless: return "on a frictionless table";
+    case Contact::Rolling: return "rolling on a table without slipping";
+    case Contact::Sliding:
+      return fmt::format("on a table with {} friction (mu = {:g}{})",
+                         t.friction_law == FrictionLaw::Viscous ? "viscous" : "Coulomb", t.friction,
+                         t.friction_law == FrictionLaw::Viscous ? fmt::format(", slip speed {:g} m/s", t.slip_speed)
+                                                                : std::string());
+    case Contact::Pivot: break;
+  }
+  return "on a pivot";
+}
+
+std::string table_answer_headline(const TableAnswer& a) {
+  switch (a.verdict) {
+    case AnswerVerdict::LeavesTable: return "Leaves the table.";
+    case AnswerVerdict::Falls: return "Falls.";
+    case AnswerVerdict::TurnsOver: return a.ends_upside_down ? "Turns over." : "Turns over part way.";
+    case AnswerVerdict::StaysUp: return fmt::format("Rises to vertical in {} and sleeps.", time_words(*a.upright_at));
+    case AnswerVerdict::StaysUpForHorizon: break;
+  }
+  return "Stays up for the horizon.";
+}
+
+std::string table_answer_reason(const TableAnswer& a, const Table& table) {
+  const std::string start = fmt::format(
+      "Spinning at {} {}, {}", spin_words(a.spin), contact_words(table),
+      a.start_tilt == 0.0 ? std::string("started upright") : fmt::format("started {} off vertical", angle_words(a.start_tilt)));
+  switch (a.verdict) {
+    case AnswerVerdict::LeavesTable:
+      return fmt::format("{}, this body's normal force falls to zero at t = {}: it leaves the table (its flight "
+                         "and landing are not modelled).",
+                         start, time_words(*a.leaves_at));
+    case AnswerVerdict::Falls:
+      return fmt::format("{}, this top tilts past {} at t = {}.", start, angle_words(a.fall_threshold),
+                         time_words(*a.falls_at));
+    case AnswerVerdict::TurnsOver:
+      return a.ends_upside_down
+                 ? fmt::format("{}, this top passes a quarter turn at t = {} and ends spinning upside down on its "
+                               "other side ({} from vertical at t = {}), at {} about its axis.",
+                               start, time_words(*a.turns_over_at), angle_words(a.final_tilt),
+                               time_words(a.end_time), spin_words(std::abs(a.final_spin)))
+                 : fmt::format("{}, this top passes a quarter turn at t = {} and spins tilted part way, {} from "
+                               "vertical at t = {}, at {} about its axis.",
+                               start, time_words(*a.turns_over_at), angle_words(a.final_tilt),
+                               time_words(a.end_time), spin_words(std::abs(a.final_spin)));
+    case AnswerVerdict::StaysUp:
+      return fmt::format("{}, this top rises: from t = {} its tilt stays below {} for the {} computed, spinning at {} "
+                         "at the end; the upright spin {} there (the linearisation, Lyapunov's first method).",
+                         start, time_words(*a.upright_at), angle_words(kSleepingTilt), time_words(a.horizon),
+                         spin_words(a.final_spin),
+                         a.upright_attracts ? "is asymptotically stable" : "is not asymptotically stable");
+    case AnswerVerdict::StaysUpForHorizon: break;
+  }
+  return fmt::format("{}, this top did not fall, turn over or leave the table in the {} computed (largest tilt {}; "
+                     "not proven beyond it).",
+                     start, time_words(a.horizon), angle_words(a.max_tilt));
+}
+
+std::string table_answer_text(const TableAnswer& a, const Table& table) {
+  std::string text = table_answer_headline(a) + " " + table_answer_reason(a, table);
+  text += fmt::format(" Its contact point wandered up to {:.3g} m from where it started.", a.track);
+  if (a.min_spin)
+    text += fmt::format(" On this table the upright spin is stable from {} up.", spin_words(*a.min_spin));
+  return text;
+}
+
 const char* const kStabilityGlossary =
     "Glossary\n"
     "  tilt: the angle of the spin axis from the upward vertical; azimuth: the direction it leans to.\n"

@@ -28,6 +28,8 @@ constexpr Field kFields[] = {
     {"body.mass", &Body::mass},
     {"body.gravity", &Body::gravity},
     {"body.length", &Body::length},
+    {"body.tip_radius", &Body::tip_radius},
+    {"body.rim_radius", &Body::rim_radius},
     {"motion.spin", nullptr, &InitialState::spin},
     {"motion.theta0", nullptr, &InitialState::theta0},
     {"motion.phi0", nullptr, &InitialState::phi0},
@@ -183,6 +185,7 @@ double* config_field(Body& body, InitialState& state, std::string_view key) {
 const std::map<std::string, std::vector<std::string>>& command_sections() {
   static const std::map<std::string, std::vector<std::string>> sections = {
       {"simulate", {"model", "t_end", "samples", "method", "rtol", "atol", "integrator", "step", "order"}},
+      {"table", {"contact", "friction", "friction_law", "slip_speed"}},
   };
   return sections;
 }
@@ -291,6 +294,39 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
                          "cannot be given with [[body.part]]: the parts make the body (give one or the other)");
   }
   return config;
+}
+
+Table table_of(const Configuration& config) {
+  Table table;
+  if (const auto contact = config.string("table.contact")) {
+    const auto known = contact_from_name(*contact);
+    if (!known)
+      throw InvalidInput("table.contact", fmt::format("unknown contact \"{}\": must be \"pivot\", \"frictionless\", "
+                                                      "\"rolling\" or \"sliding\"", printable(*contact)));
+    table.contact = *known;
+  }
+  const char* others[] = {"table.friction", "table.friction_law", "table.slip_speed"};
+  if (!table.on_table())
+    for (const char* key : others)
+      if (config.settings.count(key))
+        throw InvalidInput(key, "applies to a body on a table only: set table.contact to \"frictionless\", "
+                                "\"rolling\" or \"sliding\" (the pivot holds O fixed)");
+  if (table.contact != Contact::Sliding)
+    for (const char* key : {"table.friction", "table.friction_law"})
+      if (table.on_table() && config.settings.count(key))
+        throw InvalidInput(key, fmt::format("applies to table.contact = \"sliding\" only (here \"{}\")",
+                                            name(table.contact)));
+  if (const auto mu = config.number("table.friction")) table.friction = *mu;
+  if (const auto law = config.string("table.friction_law")) {
+    const auto known = friction_law_from_name(*law);
+    if (!known)
+      throw InvalidInput("table.friction_law",
+                         fmt::format("unknown law \"{}\": must be \"viscous\" or \"coulomb\"", printable(*law)));
+    table.friction_law = *known;
+  }
+  if (const auto v = config.number("table.slip_speed")) table.slip_speed = *v;
+  validate(table);
+  return table;
 }
 
 std::string read_text_file(const std::string& path, const std::string& path_key, std::size_t max_bytes,

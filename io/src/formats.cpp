@@ -19,6 +19,8 @@ Json optional_number(const std::optional<double>& x) { return x ? Json(*x) : Jso
 /// The "body" object of every JSON output.
 Json body_json(const Body& b) {
   Json out = {{"A", b.A}, {"B", b.B}, {"C", b.C}, {"mass", b.mass}, {"gravity", b.gravity}, {"length", b.length}};
+  if (b.tip_radius != 0.0) out["tip_radius"] = b.tip_radius;  // SPEC 16's shape, when given
+  if (b.rim_radius != 0.0) out["rim_radius"] = b.rim_radius;
   if (is_general(b)) {  // SPEC section 11's keys, only when the body has them (ordinary JSON unchanged)
     out["offset_x"] = b.general.offset_x;
     out["offset_y"] = b.general.offset_y;
@@ -129,6 +131,115 @@ std::string stability_json(const Body& body, const TopAnalysis& analysis) {
   if (!wander.max_tilt) w["note"] = wander.note;
   out["wander"] = w;
   return out.dump(2) + "\n";
+}
+
+namespace {
+
+Json table_settings_json(const Body& body, const Table& table) {
+  Json t;
+  t["contact"] = std::string(name(table.contact));
+  if (table.contact == Contact::Sliding) {
+    t["friction"] = table.friction;
+    t["friction_law"] = std::string(name(table.friction_law));
+    t["slip_speed"] = table.slip_speed;
+  }
+  t["tip_radius"] = body.tip_radius;
+  t["rim_radius"] = body.rim_radius;
+  return t;
+}
+
+Json spinning_state_json(const SpinningStateStability& s) {
+  if (!s.exists) return nullptr;
+  Json j;
+  j["stable"] = s.stable;
+  j["asymptotically"] = s.asymptotically;
+  j["critical_spin"] = optional_number(s.critical_spin);
+  j["stable_spin_intervals"] = Json::array();
+  for (const auto& [lo, hi] : s.stable_spin_intervals) j["stable_spin_intervals"].push_back({lo, optional_number(hi)});
+  j["eigenvalues"] = Json::array();
+  for (const auto& l : s.eigenvalues) j["eigenvalues"].push_back({l.real(), l.imag()});
+  j["growth_rate"] = s.growth_rate;
+  return j;
+}
+
+}  // namespace
+
+std::string table_trajectory_json(const Body& body, const Table& table, const InitialState& s, const TableRun& run) {
+  Json out;
+  out["model"] = "nonlinear";
+  out["body"] = body_json(body);
+  if (!is_realizable(body)) out["realizable"] = false;
+  out["motion"] = {{"spin", s.spin}, {"theta0", s.theta0}, {"phi0", s.phi0},
+                   {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}};
+  out["table"] = table_settings_json(body, table);
+  const Trajectory& tr = run.trajectory;
+  const auto names = tr.column_names();
+  out["columns"] = names;
+  for (std::size_t c = 0; c < names.size(); ++c) out[names[c]] = tr.column(c);
+  const TableSummary& m = run.summary;
+  out["summary"] = {{"end", m.end == TableSummary::End::LeftTable ? "leaves the table" : "completed"},
+                    {"end_time", m.end_time},
+                    {"steps", m.steps},
+                    {"rhs_evaluations", m.rhs_evaluations},
+                    {"max_relative_energy_drift", m.max_relative_energy_drift},
+                    {"max_relative_jellett_drift", m.max_relative_jellett_drift},
+                    {"max_relative_vertical_momentum_drift", m.max_relative_vertical_momentum_drift}};
+  return out.dump() + "\n";
+}
+
+std::string table_stability_json(const Body& body, const Table& table, const TableAnalysis& analysis,
+                                 const std::vector<ModelStability>& pivot_models) {
+  const TableAnswer& a = analysis.answer;
+  Json answer;
+  answer["verdict"] = std::string(name(a.verdict));
+  answer["proven"] = a.proven;
+  answer["reason"] = table_answer_reason(a, table);
+  answer["max_tilt"] = a.max_tilt;
+  answer["falls_at"] = optional_number(a.falls_at);
+  answer["horizon"] = a.horizon;
+  answer["min_spin"] = optional_number(a.min_spin);
+  answer["lifetime"] = nullptr;
+  answer["table"] = {{"upright_at", optional_number(a.upright_at)},
+                     {"turns_over_at", optional_number(a.turns_over_at)},
+                     {"leaves_at", optional_number(a.leaves_at)},
+                     {"track", a.track},
+                     {"final_tilt", a.final_tilt},
+                     {"final_spin", a.final_spin}};
+  Json out = stability_object(body, analysis.spin, pivot_models, std::move(answer));
+  Json t = table_settings_json(body, table);
+  t["upright"] = spinning_state_json(analysis.stability.upright);
+  t["inverted"] = spinning_state_json(analysis.stability.inverted);
+  out["table"] = t;
+  return out.dump(2) + "\n";
+}
+
+std::string table_stability_text(const Body& body, const Table& table, const TableAnalysis& analysis) {
+  std::ostringstream out;
+  out << table_answer_text(analysis.answer, table) << "\n\n";
+  out << "The details\n-----------\n";
+  out << fmt::format("Body: A = {:g}, B = {:g}, C = {:g} kg m^2 about O; m = {:g} kg, l = {:g} m (A_G = {:g}, "
+                     "B_G = {:g} kg m^2 about G); tip radius {:g} m, rim radius {:g} m\n",
+                     body.A, body.B, body.C, body.mass, body.length, central_moment_A(body), central_moment_B(body),
+                     body.tip_radius, body.rim_radius);
+  out << fmt::format("Spinning states at {:.6g} rad/s ({}), linearised in body axes:\n", analysis.spin,
+                     name(table.contact));
+  const auto state = [&](const char* label, const SpinningStateStability& s) {
+    if (!s.exists) {
+      out << fmt::format("  {}: none (a rim's axis cannot stand vertical)\n", label);
+      return;
+    }
+    std::string intervals;
+    for (const auto& [lo, hi] : s.stable_spin_intervals)
+      intervals += fmt::format("{}{}", intervals.empty() ? "" : ", ",
+                               hi ? fmt::format("[{:.6g}, {:.6g}]", lo, *hi)
+                                  : lo == 0.0 ? std::string("every spin") : fmt::format("from {:.6g}", lo));
+    out << fmt::format("  {}: {}{}; growth rate {:.4g} 1/s; stable for spins (rad/s): {}\n", label,
+                       s.stable ? "stable" : "unstable", s.asymptotically ? ", asymptotically" : "", s.growth_rate,
+                       intervals.empty() ? "none" : intervals);
+  };
+  state("upright (tilt 0)", analysis.stability.upright);
+  state("inverted (tilt pi)", analysis.stability.inverted);
+  return out.str();
 }
 
 std::string intervals_text(const std::vector<SpinInterval>& intervals) {

@@ -16,6 +16,7 @@
 #include "heavytop/body.hpp"
 #include "heavytop/mass_properties.hpp"
 #include "heavytop/state.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::io {
 
@@ -87,6 +88,11 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
 /// The largest configuration file read_configuration() reads (bytes): more is refused, so a
 /// device such as /dev/zero given as a file is bad input, not an endless read.
 inline constexpr std::size_t kMaxConfigurationBytes = 1 << 20;
+
+/// The [table] section (SPEC section 16): the pivot when absent. Throws InvalidInput naming the
+/// key for an unknown contact or law, a value out of range (Table::IsValid), the other keys
+/// with contact = "pivot", and friction or friction_law with a contact other than "sliding".
+Table table_of(const Configuration& config);
 
 /// Text from the user (a path, a key, a field of a file) as it goes into a one-line message:
 /// control characters shown escaped (\n, \x01).

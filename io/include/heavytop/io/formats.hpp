@@ -15,6 +15,7 @@
 #include "heavytop/simulate.hpp"
 #include "heavytop/stability.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::io {
 
@@ -41,6 +42,20 @@ std::string answer_reason(const Answer& answer);
 std::string answer_advice(const Answer& answer);
 std::string answer_text(const Answer& answer);
 
+/// The answer on a table (SPEC section 16) in words: the headline ("Turns over.", "Rises to
+/// vertical in 6.93 s and sleeps.", ...), the reason (the JSON's "reason"), and the paragraph
+/// `stability` opens with on a table (the two, the track, the upright's critical spin).
+std::string table_answer_headline(const TableAnswer& answer);
+std::string table_answer_reason(const TableAnswer& answer, const Table& table);
+std::string table_answer_text(const TableAnswer& answer, const Table& table);
+
+/// `stability` on a table: the JSON (SPEC 14's keys with the table's "answer" and its "table"
+/// keys; the linear models of the same body on a pivot; the "table" object of SPEC 16) and the
+/// text (the answer, then each spinning state's verdict, critical spin and eigenvalues).
+std::string table_stability_json(const Body& body, const Table& table, const TableAnalysis& analysis,
+                                 const std::vector<ModelStability>& pivot_models);
+std::string table_stability_text(const Body& body, const Table& table, const TableAnalysis& analysis);
+
 /// The glossary of the terms the details of `stability` use (text, one term a line).
 extern const char* const kStabilityGlossary;
 
@@ -63,6 +78,10 @@ std::string trajectory_csv(const Trajectory& trajectory);
 /// integrator's summary when given.
 std::string trajectory_json(Model model, const Body& body, const InitialState& state, const Trajectory& trajectory,
                             const NonlinearSummary* summary);
+
+/// `simulate --format json` on a table (SPEC section 16): trajectory_json()'s keys with
+/// "table" (the contact, its law) and the run's "summary" (steps, the drifts, how it ended).
+std::string table_trajectory_json(const Body& body, const Table& table, const InitialState& state, const TableRun& run);
 
 std::string comparison_json(const Comparison& comparison);
 std::string comparison_csv(const Comparison& comparison);
