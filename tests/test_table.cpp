@@ -375,6 +375,32 @@ TEST(TableRolling, KeepsEnergyAndJellett) {
   for (double v : column(run, "slip_speed")) EXPECT_EQ(v, 0.0);
 }
 
+// A coin rolling upright on its rim (axis horizontal): it rolls straight, P moving at w rho
+// along the table, O at rho above it, the tilt held at pi/2; energy kept.
+TEST(TableRolling, ACoinRollsStraightOnItsRim) {
+  Body coin;
+  coin.mass = 0.01;
+  coin.length = 0.0;
+  coin.rim_radius = 0.0125;
+  coin.A = coin.B = coin.mass * coin.rim_radius * coin.rim_radius / 4.0;
+  coin.C = coin.mass * coin.rim_radius * coin.rim_radius / 2.0;
+  const double w = 20.0;
+  const TableRun run = simulate_on_table(coin, table_of(Contact::Rolling), start(w, kPi / 2.0), {2.0, 21}, tight());
+  const auto& x = column(run, "x");
+  const auto& y = column(run, "y");
+  const auto& tilt = column(run, "tilt");
+  for (std::size_t i = 0; i < run.trajectory.size(); ++i) {
+    const double t = run.trajectory.t[i];
+    EXPECT_NEAR(std::hypot(x[i], y[i]), w * coin.rim_radius * t, 1e-12);
+    EXPECT_NEAR(tilt[i], kPi / 2.0, 1e-12);
+    EXPECT_NEAR(column(run, "height")[i], coin.rim_radius, 1e-15);
+    EXPECT_NEAR(column(run, "normal_force")[i], coin.mass * coin.gravity, 1e-12);
+  }
+  // Tilted, it wobbles and wanders, its energy kept.
+  const TableRun wobble = simulate_on_table(coin, table_of(Contact::Rolling), start(w, kPi / 2.0 - 0.2), {2.0, 21}, tight());
+  EXPECT_LT(wobble.summary.max_relative_energy_drift, 1e-10);
+}
+
 // ---- refusals ----------------------------------------------------------------------------------
 
 TEST(TableInput, RefusesWhatTheTableCannotHold) {
