@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <gtest/gtest.h>
 
@@ -150,6 +151,38 @@ TEST(TableFrictionless, TheTiltTurnsAtTheRootsOfTheEffectiveEnergy) {
   }
   EXPECT_GE(maxima, 3);
   for (double a : tilt) EXPECT_GE(a, theta0 - 1e-9);
+}
+
+// Without spin the frictionless top swings in a plane: E = (A_G + m l^2 sin^2) tilt'^2 / 2 + m g l cos,
+// N = m (g + z_G''), z_G = r + l cos. Where N reaches 0 (TOMS 748 on N(tilt) along the energy) and
+// when (the quadrature of dt = d tilt / tilt'), the body leaves the table.
+TEST(TableFrictionless, LeavesTheTableWhereTheQuadratureSaysNVanishes) {
+  const Body body = toy_top(0.0);
+  const double Ag = central_moment_A(body), m = body.mass, l = body.length, g = body.gravity;
+  const double a0 = 0.3, rate0 = -20.0;  // swinging up towards vertical: it hops near the top
+  auto J = [&](double a) { return Ag + m * l * l * std::sin(a) * std::sin(a); };
+  const double E = 0.5 * J(a0) * rate0 * rate0 + m * g * l * std::cos(a0);
+  auto rate2 = [&](double a) { return 2.0 * (E - m * g * l * std::cos(a)) / J(a); };
+  auto normal = [&](double a) {
+    // tilt'' = (1/2) d(tilt'^2)/d tilt, differentiated by hand.
+    const double dJ = 2.0 * m * l * l * std::sin(a) * std::cos(a);
+    const double accel = (m * g * l * std::sin(a) - 0.5 * dJ * rate2(a)) / J(a);
+    return m * (g - l * (std::cos(a) * rate2(a) + std::sin(a) * accel));
+  };
+  ASSERT_GT(normal(a0), 0.0);
+  boost::uintmax_t it = 200;
+  const auto root = boost::math::tools::toms748_solve(normal, 0.01, a0, boost::math::tools::eps_tolerance<double>(52), it);
+  const double a_leave = 0.5 * (root.first + root.second);
+  const double t_leave = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+      [&](double a) { return 1.0 / std::sqrt(rate2(a)); }, a_leave, a0, 10, 1e-14);
+  InitialState s;
+  s.theta0 = a0;
+  s.theta_rate0 = rate0;
+  const TableRun run = simulate_on_table(body, table_of(Contact::Frictionless), s, {1.0, 11}, tight());
+  EXPECT_EQ(run.summary.end, TableSummary::End::LeftTable);
+  EXPECT_NEAR(run.summary.end_time, t_leave, 1e-9);
+  EXPECT_NEAR(column(run, "tilt").back(), a_leave, 1e-9);
+  EXPECT_NEAR(column(run, "normal_force").back(), 0.0, 1e-9);
 }
 
 // ---- stability of the spinning states: closed forms ------------------------------------------

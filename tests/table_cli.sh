@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The top on a table from the command line (SPEC section 16), as a user drives it: the columns,
+# the answer's verdicts for the examples, the leaving event, every refusal naming its key with
+# exit 2 and no file written, and the pivot unchanged by a shape key.
+examples=$(realpath "$(dirname "$0")/../examples")
+source "$(dirname "$0")/harness.sh"
+
+# simulate: SPEC's seven columns, then the table's.
+"$H" simulate --config "$examples/tippe-top.toml" --t-end 1 --samples 3 > tippe.csv
+check "table columns" [ "$(head -1 tippe.csv)" = "t,theta,phi,theta_rate,phi_rate,tilt,azimuth,x,y,height,normal_force,slip_speed,spin,energy,jellett,vertical_momentum" ]
+check "three rows" [ "$(wc -l < tippe.csv)" = 4 ]
+# Jellett's integral is the same in every row (to the digits printed: 1e-9 relative).
+check "jellett kept" python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('tippe.csv')))
+j = [float(r['jellett']) for r in rows]
+sys.exit(0 if max(abs(x - j[0]) for x in j) < 1e-9 * abs(j[0]) else 1)"
+
+# stability: the answer for each example.
+verdict() { "$H" stability --config "$examples/$1" --format json | python3 -c "import json,sys; print(json.load(sys.stdin)['answer']['verdict'])"; }
+check "tippe top turns over" [ "$(verdict tippe-top.toml)" = "turns over" ]
+check "rising top stays up" [ "$(verdict rising-top.toml)" = "stays up" ]
+check "rising top text" bash -c "'$H' stability --config '$examples/rising-top.toml' | head -1 | grep -q '^Rises to vertical in 6.93 s and sleeps.'"
+check "slow rising top falls" bash -c "'$H' stability --config '$examples/rising-top.toml' --spin 100 --format json | grep -q '\"verdict\": \"falls\"'"
+"$H" stability --config "$examples/tippe-top.toml" --format json > tippe.json
+check "table block" python3 -c "
+import json, sys
+d = json.load(open('tippe.json'))
+t = d['table']
+ok = t['contact'] == 'sliding' and t['upright']['stable'] is False and t['inverted']['asymptotically'] is True
+ok = ok and abs(t['inverted']['critical_spin'] - 79.73004452526) < 1e-6 and 5.0 < d['answer']['table']['turns_over_at'] < 5.3
+sys.exit(0 if ok else 1)"
+
+# Leaving the table: a top without spin swinging up towards vertical so fast that its centre of
+# mass, slowing near the top of its swing, drops faster than gravity pulls it: it hops at
+# t = 0.006146 s (test_table's quadrature); the last row is then.
+"$H" simulate --A 4.35e-5 --B 4.35e-5 --C 1.2e-5 --mass 0.06 --length 0.025 --contact frictionless \
+  --theta0 0.3 --theta-rate0 -20 --t-end 1 --samples 11 > leave.csv 2> leave.err
+check "leaves: exit 0" [ $? -eq 0 ]
+check "leaves: said on stderr" grep -q "^heavytop: the body leaves the table at t = 0.006145549" leave.err
+check "leaves: last row at the event" bash -c "tail -1 leave.csv | grep -q '^0.006145549'"
+check "leaves: N = 0 there" python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('leave.csv')))
+sys.exit(0 if abs(float(rows[-1]['normal_force'])) < 1e-9 and len(rows) == 2 else 1)"
+"$H" simulate --A 4.35e-5 --B 4.35e-5 --C 1.2e-5 --mass 0.06 --length 0.025 --contact frictionless \
+  --theta0 0.15 --theta-rate0 -20 --t-end 1 --samples 11 > leave0.csv 2> leave0.err
+check "N < 0 at once: one row" [ "$(wc -l < leave0.csv)" = 2 ]
+check "N < 0 at once: said" grep -q "leaves the table at t = 0 s" leave0.err
+
+# Refusals: exit 2, one line naming the key, no file.
+refuse() {  # refuse KEY ARGS...
+  local key=$1; shift
+  rm -f out.csv
+  "$H" "$@" --output out.csv > /dev/null 2> err.txt
+  local rc=$?
+  [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" = 1 ] && grep -q -- "$key" err.txt && [ ! -e out.csv ]
+}
+printf '[body]\nA = 4.35e-5\nB = 4.35e-5\nC = 1.2e-5\nmass = 0.06\nlength = 0.025\n[table]\ncontact = "pivot"\nfriction = 0.3\n' > pivot.toml
+check "friction with a pivot" refuse table.friction stability --config pivot.toml
+printf '[body]\nA = 4.35e-5\nB = 4.35e-5\nC = 1.2e-5\nmass = 0.06\nlength = 0.025\n[table]\ncontact = "skating"\n' > skate.toml
+check "unknown contact" refuse table.contact stability --config skate.toml
+check "negative tip radius" refuse body.tip_radius simulate --contact sliding --tip-radius -1e-3
+check "slip speed 0" refuse table.slip_speed simulate --contact sliding --slip-speed 0
+check "negative friction" refuse table.friction simulate --contact sliding --table-friction -1
+check "friction without sliding" refuse table.friction simulate --contact rolling --table-friction 0.3
+check "linear model on a table" refuse table.contact simulate --contact rolling --model first-order
+check "taylor on a table" refuse --integrator simulate --contact rolling --integrator taylor
+check "lifetime on a table" refuse table.contact lifetime --config "$examples/tippe-top.toml"
+check "damping on a table" refuse damping.axial simulate --contact sliding --axial-damping 1e-6
+check "coulomb not yet" refuse table.friction_law simulate --contact sliding --friction-law coulomb
+check "flat rim" refuse motion.theta0 simulate --contact rolling --rim-radius 0.01 --theta0 0
+
+# A shape key on a pivot changes nothing but the body's JSON.
+"$H" simulate --t-end 0.1 --samples 3 > pivot.csv
+"$H" simulate --t-end 0.1 --samples 3 --tip-radius 0.002 > pivot_tip.csv
+check "pivot with a tip radius: same motion" cmp -s pivot.csv pivot_tip.csv
+finish
