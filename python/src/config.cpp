@@ -4,6 +4,7 @@
 #include <string>
 #include <variant>
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -23,6 +24,13 @@ namespace {
 // (SPEC section 11) is kept (the analyses that cannot take it refuse it).
 py::tuple load_configuration(const std::string& path) {
   const io::Configuration config = io::read_configuration(path, "path");
+  // [table] checked as the command line checks it; the package's analyses are the pivot's, so a
+  // body on a table is refused rather than analysed as if it stood on a pivot.
+  if (const Table table = io::table_of(config); table.on_table())
+    throw InvalidInput("table.contact", fmt::format("the Python package analyses a body on a pivot; on a table "
+                                                    "(contact = \"{}\") use `heavytop simulate` or `heavytop "
+                                                    "stability --config` (docs/table.md)",
+                                                    name(table.contact)));
   Body body = config.body;
   if (config.parts.empty()) {
     for (const std::string& key : io::required_body_keys())
@@ -41,6 +49,8 @@ py::tuple load_configuration(const std::string& path) {
       const Damping damping = body.damping;
       body = body_of(a, config.body.gravity, assembled.names);
       body.damping = damping;
+      body.tip_radius = config.body.tip_radius;
+      body.rim_radius = config.body.rim_radius;
     } else {
       body = io::as_given(a, body);
     }

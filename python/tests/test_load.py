@@ -115,3 +115,11 @@ def test_body_report_html_has_units_and_parts():
     html = report._repr_html_()
     assert f"<td>C</td><td>{report.C:.6g} kg m^2</td>" in html and f"{report.mass * 1e3:.4g} g" in html
     assert html.count("<td>body.part[") == 2
+
+
+def test_a_body_on_a_table_is_refused_not_put_on_a_pivot():
+    # The package's analyses are the pivot's (docs/table.md): a [table] file is not silently
+    # analysed as if O were fixed.
+    with pytest.raises(heavytop.InvalidInput) as e:
+        heavytop.load(os.path.join(EXAMPLES, "tippe-top.toml"))
+    assert str(e.value).startswith("table.contact: the Python package analyses a body on a pivot")
