@@ -175,7 +175,7 @@ emscripten::val stability(const std::string& config) {
   return to_js(run("stability", cli::add_stability_command, config, {"--format", "json"}));
 }
 
-emscripten::val lifetime(const std::string& config) {
+emscripten::val js_lifetime(const std::string& config) {
   return to_js(run("lifetime", cli::add_lifetime_command, config, {"--format", "json"}));
 }
 
@@ -210,7 +210,7 @@ EMSCRIPTEN_BINDINGS(heavytop) {
   if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
   emscripten::register_vector<std::string>("StringList");
   emscripten::function("stability", &stability);
-  emscripten::function("lifetime", &lifetime);
+  emscripten::function("lifetime", &js_lifetime);
   emscripten::function("body", &body);
   emscripten::function("view", &js_view);
   emscripten::function("simulate", &js_simulate);

@@ -1,0 +1,61 @@
+// The body on a table (table.hpp): Friedl's tippe top turning over (examples/tippe-top.toml, the
+// first 5 s: it passes a quarter turn at 5.146 s), at the tolerances that keep Jellett's integral
+// to 1e-9 and tighter; and the rising toy top (examples/rising-top.toml). Each run's counters: the
+// steps, and Jellett's and the energy's largest relative drift. bench/scipy_table.py integrates
+// the same equations with SciPy's DOP853 for the side-by-side comparison (docs/table.md).
+#include <cmath>
+
+#include <benchmark/benchmark.h>
+
+#include "heavytop/table.hpp"
+
+namespace {
+
+using namespace heavytop;
+
+Body tippe_top() {
+  Body b;
+  b.mass = 0.006;
+  b.length = -0.003;
+  b.C = 7e-7;
+  b.A = b.B = 8e-7 + b.mass * b.length * b.length;
+  b.tip_radius = 0.015;
+  return b;
+}
+
+Body rising_top() {
+  Body b;
+  b.mass = 0.060;
+  b.length = 0.025;
+  b.C = 1.2e-5;
+  b.A = b.B = 4.35e-5;
+  b.tip_radius = 0.002;
+  return b;
+}
+
+void run(benchmark::State& state, const Body& body, double spin, double horizon) {
+  Table table;
+  table.contact = Contact::Sliding;
+  table.friction = 0.3;
+  InitialState start;
+  start.spin = spin;
+  start.theta0 = 0.1;
+  Tolerances tolerances;
+  tolerances.rtol = tolerances.atol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  TableRun last;
+  for (auto _ : state) {
+    last = simulate_on_table(body, table, start, {horizon, 2}, tolerances);
+    benchmark::DoNotOptimize(last.trajectory.t.data());
+  }
+  state.counters["steps"] = static_cast<double>(last.summary.steps);
+  state.counters["jellett_drift"] = last.summary.max_relative_jellett_drift;
+  state.counters["energy_drift"] = last.summary.max_relative_energy_drift;
+}
+
+void BM_TippeTopTurningOver(benchmark::State& state) { run(state, tippe_top(), 180.0, 5.0); }
+void BM_RisingTop(benchmark::State& state) { run(state, rising_top(), 400.0, 10.0); }
+
+BENCHMARK(BM_TippeTopTurningOver)->DenseRange(8, 12, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RisingTop)->DenseRange(8, 12, 2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
