@@ -31,6 +31,9 @@ ok = t['contact'] == 'sliding' and t['upright']['stable'] is False and t['invert
 ok = ok and abs(t['inverted']['critical_spin'] - 79.73004452526) < 1e-6 and 5.0 < d['answer']['table']['turns_over_at'] < 5.3
 sys.exit(0 if ok else 1)"
 
+# Coulomb's law at a point: the tippe top sticks and rolls, and does not turn over.
+check "coulomb tippe top" bash -c "'$H' stability --config '$examples/tippe-top.toml' --friction-law coulomb --horizon 10 | head -1 | grep -q '^Stays up for the horizon.'"
+
 # Leaving the table: a top without spin swinging up towards vertical so fast that its centre of
 # mass, slowing near the top of its swing, drops faster than gravity pulls it: it hops at
 # t = 0.006146 s (test_table's quadrature); the last row is then.
@@ -68,7 +71,7 @@ check "linear model on a table" refuse table.contact simulate --contact rolling 
 check "taylor on a table" refuse --integrator simulate --contact rolling --integrator taylor
 check "lifetime on a table" refuse table.contact lifetime --config "$examples/tippe-top.toml"
 check "damping on a table" refuse damping.axial simulate --contact sliding --axial-damping 1e-6
-check "coulomb not yet" refuse table.friction_law simulate --contact sliding --friction-law coulomb
+check "unknown law" refuse table.friction_law simulate --contact sliding --friction-law dry
 check "flat rim" refuse motion.theta0 simulate --contact rolling --rim-radius 0.01 --theta0 0
 
 # A shape key on a pivot changes nothing but the body's JSON.

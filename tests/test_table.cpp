@@ -326,6 +326,79 @@ TEST(TableSliding, ARoundTippedTopAboveItsCriticalSpinRisesToVertical) {
   EXPECT_LT(tilt.back(), 0.01);
 }
 
+// ---- Coulomb's law at a point -------------------------------------------------------------------
+
+Table coulomb(double mu) {
+  Table t = table_of(Contact::Sliding, mu);
+  t.friction_law = FrictionLaw::Coulomb;
+  return t;
+}
+
+// A uniform ball set down with topspin w0 and no speed: friction mu m g drives it (v = mu g t) and
+// brakes the spin (w = w0 - 5 mu g t / (2 r)) until it rolls, v = w r: at t = 2 w0 r / (7 mu g),
+// then at 2/7 w0 r for ever (the billiard ball's closed form).
+TEST(TableCoulomb, ABallWithTopspinRollsAtTheBilliardBallsTime) {
+  Body ball;
+  ball.mass = 0.17;
+  ball.length = 0.0;
+  ball.tip_radius = 0.028;
+  ball.A = ball.B = ball.C = 0.4 * ball.mass * ball.tip_radius * ball.tip_radius;
+  const double mu = 0.2, w0 = 50.0, g = ball.gravity, r = ball.tip_radius;
+  const double t_roll = 2.0 * w0 * r / (7.0 * mu * g);
+  const TableRun run = simulate_on_table(ball, coulomb(mu), start(w0, kPi / 2.0), {2.0 * t_roll, 201}, tight());
+  EXPECT_EQ(run.summary.switches, 1u);
+  const auto& slip = column(run, "slip_speed");
+  const auto& x = column(run, "x");
+  const auto& y = column(run, "y");
+  for (std::size_t i = 0; i < run.trajectory.size(); ++i) {
+    const double t = run.trajectory.t[i];
+    // P's distance: (1/2) mu g t^2 while it slides, then 2/7 w0 r a second more.
+    const double d = t < t_roll ? 0.5 * mu * g * t * t : 0.5 * mu * g * t_roll * t_roll + 2.0 / 7.0 * w0 * r * (t - t_roll);
+    EXPECT_NEAR(std::hypot(x[i], y[i]), d, 1e-9) << "t = " << t;
+    if (t < t_roll * (1.0 - 1e-6)) EXPECT_NEAR(slip[i], w0 * r - 3.5 * mu * g * t, 1e-9) << "t = " << t;
+    if (t > t_roll * (1.0 + 1e-6)) EXPECT_EQ(slip[i], 0.0) << "t = " << t;
+  }
+}
+
+// Leine and Glocker's remark, the contract's research: at a point Coulomb's law sticks at once and
+// the tippe top then rolls without losing energy, so it does not turn over.
+TEST(TableCoulomb, TheTippeTopSticksAndRollsAndDoesNotTurnOver) {
+  const TableRun run = simulate_on_table(tippe_top(), coulomb(0.3), start(180.0, 0.1), {10.0, 101}, tight());
+  EXPECT_GE(run.summary.switches, 1u);
+  EXPECT_LT(run.summary.max_relative_jellett_drift, 1e-9);
+  const auto& tilt = column(run, "tilt");
+  EXPECT_LT(*std::max_element(tilt.begin(), tilt.end()), 0.2);
+  const auto& energy = column(run, "energy");
+  const auto& slip = column(run, "slip_speed");
+  for (std::size_t i = 1; i < energy.size(); ++i)
+    if (slip[i] == 0.0 && slip[i - 1] == 0.0) EXPECT_NEAR(energy[i], energy[i - 1], 1e-11 * energy[0]);
+  EXPECT_EQ(slip.back(), 0.0);
+}
+
+// A nutating round-tipped top whose contact sticks and slips in turn: every switch an event, the
+// energy constant while it sticks and falling while it slips, Jellett's integral kept throughout.
+TEST(TableCoulomb, SticksAndSlipsInTurn) {
+  InitialState s = start(200.0, 0.3);
+  s.theta_rate0 = 10.0;
+  const TableRun run = simulate_on_table(toy_top(0.002), coulomb(0.2), s, {1.0, 2001}, tight());
+  EXPECT_GE(run.summary.switches, 3u);
+  EXPECT_LT(run.summary.max_relative_jellett_drift, 1e-9);
+  const auto& energy = column(run, "energy");
+  const auto& slip = column(run, "slip_speed");
+  int stuck = 0, slipping = 0;
+  for (std::size_t i = 1; i < energy.size(); ++i) {
+    EXPECT_LE(energy[i], energy[i - 1] * (1.0 + 1e-12));
+    if (slip[i] == 0.0 && slip[i - 1] == 0.0) {
+      EXPECT_NEAR(energy[i], energy[i - 1], 1e-11 * energy[0]);
+      ++stuck;
+    } else if (slip[i] > 0.0 && slip[i - 1] > 0.0) {
+      ++slipping;
+    }
+  }
+  EXPECT_GT(stuck, 10);
+  EXPECT_GT(slipping, 10);
+}
+
 // ---- the answer on a table --------------------------------------------------------------------
 
 TEST(TableAnswer, TheTippeTopTurnsOverAllTheWay) {

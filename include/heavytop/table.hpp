@@ -77,6 +77,7 @@ struct TableSummary {
   double end_time = 0.0;        ///< s, the last sample's time (the event's when it ended early)
   std::size_t steps = 0;        ///< accepted steps
   std::size_t rhs_evaluations = 0;
+  std::size_t switches = 0;     ///< Coulomb's law: the contact's switches between sticking and slipping
   /// The largest |Q(t) - Q(0)| over the accepted steps, relative to the scales of docs/table.md:
   /// the energy (over T(0) + m g |l| + m g r) and Jellett's integral and the vertical angular
   /// momentum about G (over |L_G(0)| (|l| + r + rim) and |L_G(0)|; 0 where they are zero).
@@ -103,7 +104,8 @@ struct TableRun {
 /// at `grid`, integrated by DOP853 (stepper of dop853.hpp) at `tolerances` (which apply to the
 /// quaternion, the angular velocity in rad/s and G's horizontal position and velocity in m and
 /// m/s). Ends early, with a last sample at the event, when the normal force reaches 0 (located
-/// to 1e-12 s on the dense output). Throws InvalidInput for bad input (validate(table, body), the
+/// to 1e-12 s on the dense output). Under Coulomb's law the contact's switches between slipping
+/// and sticking are located the same way and each restarts the stepper (TableSummary::switches). Throws InvalidInput for bad input (validate(table, body), the
 /// state, the tolerances, N < 0 at t = 0 is not an error: it ends the run at t = 0) and
 /// std::runtime_error (one line, with the time) for a numerical failure or Painleve's paradox
 /// (the normal force undetermined).

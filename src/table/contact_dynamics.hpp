@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <complex>
+#include <type_traits>
 
 #include <Eigen/Core>
 
@@ -119,6 +120,12 @@ template <class T>
 Vec3<T> friction_per_normal(const TableParameters& p, const Vec3<T>& gamma, const Vec3<T>& slip) {
   if (p.contact != Contact::Sliding || p.friction == 0.0) return Vec3<T>::Zero();
   const Vec3<T> tangential = slip - slip.dot(gamma) * gamma;
+  if (p.law == FrictionLaw::Coulomb) {  // slipping (the sticking contact's equations are rolling's)
+    if constexpr (std::is_same_v<T, double>) {
+      const double size = tangential.norm();
+      return size > 0.0 ? Vec3<T>((-p.friction / size) * tangential) : Vec3<T>::Zero();
+    }
+  }
   return (-p.friction / p.slip_speed) * tangential;
 }
 

@@ -86,9 +86,6 @@ void validate(const Table& table, const Body& body) {
     throw InvalidInput(damped, fmt::format("applies to the pivot only: on a table (table.contact = \"{}\") the losses "
                                            "are the contact's (table.friction)",
                                            name(table.contact)));
-  if (table.contact == Contact::Sliding && table.friction_law == FrictionLaw::Coulomb)
-    throw InvalidInput("table.friction_law", "\"coulomb\" is not implemented yet (issue 42): use \"viscous\", or "
-                                             "\"rolling\" for the stuck contact");
 }
 
 double central_moment_A(const Body& body) noexcept { return body.A - body.mass * body.length * body.length; }
@@ -172,12 +169,13 @@ struct TableHooks {
   TableSummary* summary;
   Watched initial;
   DriftScales scales;
+  std::size_t evaluations_before = 0;  // by the run's earlier segments (Coulomb's switches)
 
   void project(TableVector& y, TableVector& dydt) { detail::renormalise_quaternion(y, dydt); }
   void rejected() {}
   void accepted(double, const TableVector& y, std::size_t evaluations) {
     ++summary->steps;
-    summary->rhs_evaluations = evaluations;
+    summary->rhs_evaluations = evaluations_before + evaluations;
     const Watched w = watched(p, instant_of(p, y));
     auto raise = [](double& drift, double value, double start, double scale) {
       drift = std::max(drift, std::abs(value - start) / scale);
@@ -187,7 +185,7 @@ struct TableHooks {
     raise(summary->max_relative_vertical_momentum_drift, w.vertical_momentum, initial.vertical_momentum,
           scales.momentum);
   }
-  void evaluated(std::size_t evaluations) { summary->rhs_evaluations = evaluations; }
+  void evaluated(std::size_t evaluations) { summary->rhs_evaluations = evaluations_before + evaluations; }
 };
 
 using Stepper = detail::Dop853Stepper<kStateSize, TableSystem, TableHooks>;
@@ -195,14 +193,15 @@ using Stepper = detail::Dop853Stepper<kStateSize, TableSystem, TableHooks>;
 // Appends the sample of state y at t to the run's trajectory.
 class TableSampler {
  public:
-  TableSampler(const TableParameters& p, Trajectory& out) : p_(p), out_(out) {
+  explicit TableSampler(Trajectory& out) : out_(out) {
     out_.extra.clear();
     for (auto c : kAxisDirectionColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
     for (auto c : kTableColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
   }
 
-  void add(double t, const TableVector& y) {
-    const Instant in = instant_of(p_, y);
+  // `p`: the equations of that moment (Coulomb's: rolling while the contact sticks).
+  void add(double t, const TableVector& y, const TableParameters& p) {
+    const Instant in = instant_of(p, y);
     const V3 k = in.R.col(2), k_rate = in.R * in.omega.cross(V3::UnitZ());
     const AxisAngles a = axis_angles(k, k_rate);
     out_.t.push_back(t);
@@ -212,14 +211,14 @@ class TableSampler {
     out_.phi_rate.push_back(a.phi_rate);
     const V3 P = V3(y[7], y[8], 0.0) - in.R * in.geometry.s;
     const V3 slip = in.motion.slip - in.motion.slip.dot(in.gamma) * in.gamma;
-    const Watched w = watched(p_, in);
+    const Watched w = watched(p, in);
     const double values[] = {tilt_of_axis(k[0], k[1], k[2]),
                              azimuth_(k[0], k[1]),
                              P[0],
                              P[1],
-                             p_.tip_radius + p_.rim_radius * in.geometry.S,
+                             p.tip_radius + p.rim_radius * in.geometry.S,
                              in.motion.normal,
-                             p_.contact == Contact::Rolling ? 0.0 : slip.norm(),
+                             p.contact == Contact::Rolling ? 0.0 : slip.norm(),
                              in.omega[2],
                              w.energy,
                              w.jellett,
@@ -232,7 +231,6 @@ class TableSampler {
     ContinuousAzimuth continuous;
     double operator()(double kx, double ky) { return continuous.of_axis(kx, ky); }
   };
-  const TableParameters& p_;
   Trajectory& out_;
   Azimuth azimuth_;
 };
@@ -264,9 +262,12 @@ TableVector initial_vector(const TableParameters& p, const InitialState& initial
 namespace detail {
 
 // One run on the table, step by step: `on_step(view)` sees each accepted step's interval
-// [t0, t1] (t1 the time the body leaves the table, if it does in this step) with its dense
-// output, and returns false to stop. The run ends at `horizon`, when the normal force reaches 0
-// (its zero located on the dense output) or when on_step stops it.
+// [t0, t1] (t1 an event's time when one ends the step) with its dense output and the equations
+// of the moment, and returns false to stop. The run ends at `horizon`, when the normal force
+// reaches 0 (its zero located on the dense output) or when on_step stops it. Under Coulomb's
+// law the run is a sequence of segments, each a fresh stepper from the state at a switch: the
+// contact slips (F = -mu N v / |v|) until the slip vanishes, then sticks (the rolling equations)
+// while the force that takes stays within mu N (Leine and Glocker's switches, located as events).
 class TableIntegration {
  public:
   TableIntegration(const Body& body, const Table& table, const InitialState& initial, double horizon,
@@ -277,6 +278,8 @@ class TableIntegration {
     validate(initial);
     validate(tolerances);
     if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("t_end", "must be a finite number >= 0");
+    stick_ = p_;
+    stick_.contact = Contact::Rolling;
     y0_ = initial_vector(p_, initial);
     const Instant in0 = instant_of(p_, y0_);
     if (p_.rim_radius > 0.0 && !(in0.geometry.S > 0.0))
@@ -289,17 +292,35 @@ class TableIntegration {
     const double L0 = detail::inertia_times(p_, in0.omega).norm();
     auto positive = [](double x) { return x > 0.0 ? x : 1.0; };
     scales_ = {positive(kinetic + p_.mass * p_.gravity * reach), positive(L0 * reach), positive(L0)};
-    if (!(in0.motion.denominator > 0.0)) painleve(0.0);
-    normal0_ = in0.motion.normal;
+    // The slip a slipping segment starts from when the contact stops sticking (m/s): far below
+    // any tolerance on a velocity, enough to give the friction its direction.
+    onset_slip_ = 1e-12 * std::sqrt(std::max(p_.gravity, 1.0) * std::max(reach, 1e-6));
+    stop_slip_ = 1e3 * onset_slip_;
+    stuck_ = false;
+    if (coulomb()) {
+      if (slip_of(in0).norm() == 0.0) {
+        if (sticks(y0_)) {
+          stuck_ = true;
+        } else {
+          start_slip(y0_);
+          armed_ = false;
+        }
+      }
+    }
+    const Instant first = instant_of(parameters(), y0_);
+    if (!(first.motion.denominator > 0.0)) painleve(0.0);
+    normal0_ = first.motion.normal;
   }
 
-  const TableParameters& parameters() const { return p_; }
+  // The equations of the moment: the contact's, or rolling while Coulomb's contact sticks.
+  const TableParameters& parameters() const { return stuck_ ? stick_ : p_; }
   const TableVector& initial_state() const { return y0_; }
 
   struct StepView {
     Stepper& stepper;
-    double t0, t1;
-    void state_at(double t, TableVector& y) const { stepper.interpolate(t, y); }
+    const TableParameters& params;
+    double offset, t0, t1;  // s: the segment's start, the step's ends
+    void state_at(double t, TableVector& y) const { stepper.interpolate(t - offset, y); }
   };
 
   template <class OnStep>
@@ -310,42 +331,166 @@ class TableIntegration {
       return;
     }
     if (horizon_ == 0.0) return;
-    Stepper stepper(TableSystem{p_}, y0_, horizon_, tolerances_, TableHooks{p_, &summary, initial_, scales_});
-    TableVector y;
-    while (stepper.time() < horizon_) {
-      stepper.step();
-      const Instant end = instant_of(p_, stepper.state());
-      if (!(end.motion.denominator > 0.0)) painleve(stepper.time());
-      if (end.motion.normal < 0.0) {
-        // The normal force's zero inside the step, on the 7th-order dense output.
-        auto normal_at = [&](double s) {
-          stepper.interpolate(s, y);
-          return instant_of(p_, y).motion.normal;
-        };
-        boost::uintmax_t iterations = 100;
-        const auto bracket = boost::math::tools::toms748_solve(
-            normal_at, stepper.previous_time(), stepper.time(), instant_of(p_, stepper.previous_state()).motion.normal,
-            end.motion.normal, [](double a, double b) { return std::abs(b - a) <= 1e-12 * std::max(1.0, std::abs(a)); },
-            iterations);
-        const double t_leave = 0.5 * (bracket.first + bracket.second);
-        summary.end = TableSummary::End::LeftTable;
-        summary.end_time = t_leave;
-        on_step(StepView{stepper, stepper.previous_time(), t_leave});
-        return;
+    double offset = 0.0;
+    int stalled = 0;
+    TableVector y_start = y0_;
+    for (;;) {
+      const TableParameters q = parameters();
+      Stepper stepper(TableSystem{q}, y_start, horizon_ - offset, tolerances_,
+                      TableHooks{q, &summary, initial_, scales_, summary.rhs_evaluations});
+      bool switched = false;
+      while (offset + stepper.time() < horizon_ && !switched) {
+        stepper.step();
+        StepView view{stepper, q, offset, offset + stepper.previous_time(), offset + stepper.time()};
+        const Instant end = instant_of(q, stepper.state());
+        if (!(end.motion.denominator > 0.0)) painleve(view.t1);
+        // The events of this step, the earliest first: leaving the table, Coulomb's switch.
+        std::optional<double> leave, change;
+        if (end.motion.normal < 0.0)
+          leave = locate(view, [&](const TableVector& y) { return instant_of(q, y).motion.normal; });
+        if (coulomb()) change = switch_in(view);
+        if (leave && (!change || *leave <= *change)) {
+          summary.end = TableSummary::End::LeftTable;
+          summary.end_time = *leave;
+          view.t1 = *leave;
+          on_step(view);
+          return;
+        }
+        if (change) {
+          view.t1 = *change;
+          summary.end_time = *change;
+          if (!on_step(view)) return;
+          stepper.interpolate(*change - offset, y_start);
+          // Stick if the force that takes is within the cone, else slip on from the switch.
+          if (!stuck_ && sticks(y_start)) {
+            stuck_ = true;
+            set_rolling_velocity(y_start);
+          } else {
+            stuck_ = false;
+            start_slip(y_start);
+            armed_ = false;
+          }
+          ++summary.switches;
+          // Switches that no longer advance the time (Zeno's chatter): stop, saying where.
+          stalled = *change > offset ? 0 : stalled + 1;
+          if (stalled > 100)
+            throw std::runtime_error(fmt::format("table: the contact switches between sticking and slipping without "
+                                                 "end at t = {:.9g} s (Coulomb's law at a point)", *change));
+          offset = *change;
+          switched = true;
+          break;
+        }
+        summary.end_time = view.t1;
+        if (!on_step(view)) return;
       }
-      summary.end_time = stepper.time();
-      if (!on_step(StepView{stepper, stepper.previous_time(), stepper.time()})) return;
+      if (!switched) return;
     }
   }
 
  private:
-  TableParameters p_;
+  bool coulomb() const { return p_.contact == Contact::Sliding && p_.law == FrictionLaw::Coulomb; }
+
+  static V3 slip_of(const Instant& in) {
+    const V3& v = in.motion.slip;
+    return v - v.dot(in.gamma) * in.gamma;
+  }
+
+  // The force the contact takes if it sticks at y (body axes), and the normal force.
+  std::pair<V3, double> sticking_force(const TableVector& y) const {
+    const Instant in = instant_of(stick_, y);
+    const V3 F = in.motion.force - in.motion.normal * in.gamma;
+    return {F, in.motion.normal};
+  }
+  bool sticks(const TableVector& y) const {
+    const auto [F, N] = sticking_force(y);
+    return F.norm() <= p_.friction * N;
+  }
+  // G's horizontal velocity as rolling demands.
+  void set_rolling_velocity(TableVector& y) const {
+    const Instant in = instant_of(stick_, y);
+    const V3 v = in.R * in.velocity;
+    y[9] = v[0];
+    y[10] = v[1];
+  }
+  // From rolling, a slip of onset_slip_ against the force the contact could not take.
+  void start_slip(TableVector& y) const {
+    set_rolling_velocity(y);
+    const auto [F, N] = sticking_force(y);
+    const Instant in = instant_of(stick_, y);
+    const V3 Ff = in.R * F;
+    const double norm = std::hypot(Ff[0], Ff[1]);
+    if (norm > 0.0) {
+      y[9] -= onset_slip_ * Ff[0] / norm;
+      y[10] -= onset_slip_ * Ff[1] / norm;
+    }
+  }
+
+  // Coulomb's switch in this step: sticking, the force leaves the cone (mu N - |F| < 0);
+  // slipping, the slip stops (its component along its direction at the step's start < 0).
+  std::optional<double> switch_in(const StepView& view) {
+    if (stuck_) {
+      auto margin = [&](const TableVector& y) {
+        const auto [F, N] = sticking_force(y);
+        return p_.friction * N - F.norm();
+      };
+      if (margin(view.stepper.state()) >= 0.0) return std::nullopt;
+      return locate(view, margin);
+    }
+    const V3 before = slip_of(instant_of(p_, view.stepper.previous_state()));
+    const double size = before.norm();
+    // A slip that starts from a switch grows from onset_slip_ and turns into the direction the
+    // body's inertia gives it: its stop is watched once it has grown past 10 stop_slip_.
+    if (!armed_) {
+      armed_ = slip_of(instant_of(p_, view.stepper.state())).norm() > 10.0 * stop_slip_;
+      return std::nullopt;
+    }
+    if (!(size > 0.0)) return std::nullopt;
+    // The slip stops where it passes through zero (its component along its direction at the
+    // step's start, held, turns negative) or falls below stop_slip_ (a slip that spirals in:
+    // its direction turns ever faster and the steps shrink with it).
+    const V3 direction = rotation_of(view.stepper.previous_state()) * before / size;
+    auto along = [&](const TableVector& y) {
+      const Instant in = instant_of(p_, y);
+      return (in.R * slip_of(in)).dot(direction);
+    };
+    auto above_stop = [&](const TableVector& y) { return slip_of(instant_of(p_, y)).norm() - stop_slip_; };
+    std::optional<double> first;
+    if (along(view.stepper.state()) <= 0.0) first = locate(view, along);
+    if (above_stop(view.stepper.state()) < 0.0) {
+      const double t = locate(view, above_stop);
+      if (!first || t < *first) first = t;
+    }
+    return first;
+  }
+
+  // The first zero of g over the step (g >= 0 at its start, < 0 at its end), on the dense output.
+  template <class G>
+  static double locate(const StepView& view, G&& g) {
+    TableVector y;
+    auto at = [&](double t) {
+      view.state_at(t, y);
+      return g(y);
+    };
+    const double a = view.t0, b = view.t1, fa = at(a), fb = at(b);
+    if (!(fa > 0.0)) return a;
+    if (!(fb < 0.0)) return b;
+    boost::uintmax_t iterations = 100;
+    const auto r = boost::math::tools::toms748_solve(
+        at, a, b, fa, fb, [](double x, double z) { return std::abs(z - x) <= 1e-12 * std::max(1.0, std::abs(x)); },
+        iterations);
+    return 0.5 * (r.first + r.second);
+  }
+
+  TableParameters p_, stick_;
   double horizon_;
   Tolerances tolerances_;
   TableVector y0_;
   Watched initial_;
   DriftScales scales_;
   double normal0_ = 0.0;
+  double onset_slip_ = 0.0, stop_slip_ = 0.0;  // m/s
+  bool stuck_ = false;
+  bool armed_ = true;  // slipping: the slip's stop is watched (see switch_in)
 };
 
 }  // namespace detail
@@ -354,20 +499,20 @@ TableRun simulate_on_table(const Body& body, const Table& table, const InitialSt
                            const Tolerances& tolerances, const Progress& progress) {
   detail::TableIntegration integration(body, table, initial, grid.t_end, tolerances);
   TableRun run;
-  TableSampler sampler(integration.parameters(), run.trajectory);
+  TableSampler sampler(run.trajectory);
   run.trajectory.reserve(grid.count);
-  sampler.add(0.0, integration.initial_state());
+  sampler.add(0.0, integration.initial_state(), integration.parameters());
   std::size_t next = 1;
   TableVector y;
   integration.run(run.summary, [&](const detail::TableIntegration::StepView& step) {
     for (; next < grid.count && grid.time(next) <= step.t1; ++next) {
       step.state_at(grid.time(next), y);
-      sampler.add(grid.time(next), y);
+      sampler.add(grid.time(next), y, step.params);
       if (progress) progress(grid.time(next));
     }
     if (run.summary.end == TableSummary::End::LeftTable && run.trajectory.t.back() != step.t1) {
       step.state_at(step.t1, y);  // the last row at the event
-      sampler.add(step.t1, y);
+      sampler.add(step.t1, y, step.params);
     }
     return true;
   });
@@ -399,7 +544,7 @@ class AnswerWatch {
       const double t = j == kPoints ? view.t1 : view.t0 + (view.t1 - view.t0) * j / kPoints;
       view.state_at(t, y);
       const double tilt = tilt_of(y);
-      const Instant in = instant_of(p_, y);
+      const Instant in = instant_of(view.params, y);
       const V3 P = V3(y[7], y[8], 0.0) - in.R * in.geometry.s;
       a_.track = std::max(a_.track, std::hypot(P[0], P[1]));
       a_.max_tilt = std::max(a_.max_tilt, tilt);
