@@ -14,9 +14,9 @@
 // drift and the energy's change over heavytop's scales (TableSummary), the largest rise of the
 // energy above its running minimum (friction only removes energy: a rise is the method's or the
 // soft contact's), the steps that end with the sphere off the plane (MuJoCo's ball hops while
-// it turns over) and its largest lift and penetration, and,
-// over --watch s (untimed), when the tilt first passes pi/2 and whether MuJoCo's step became
-// unstable (its bad-acceleration warning: it then resets the state, so the watch stops there).
+// it turns over) and its largest lift and penetration, and, over --watch s (untimed), when the
+// tilt first passes pi/2 and whether MuJoCo's step became unstable (its bad-acceleration
+// warning: it then resets the state, so the watch stops there).
 
 #include <algorithm>
 #include <cmath>
@@ -140,8 +140,8 @@ Result run(const Config& c, int reps, double horizon, double watch_for) {
   const Watched w0 = watch(d);
   const double L0 = std::hypot(kAG * d->qvel[3], kAG * d->qvel[4], kC * d->qvel[5]);
   const double jellett_scale = L0 * (std::abs(kLength) + kRadius);
-  const double energy_scale =
-      (w0.energy - kMass * kGravity * (kRadius + kLength * std::cos(kTilt0))) + kMass * kGravity * (std::abs(kLength) + kRadius);
+  const double kinetic0 = w0.energy - kMass * kGravity * (kRadius + kLength * std::cos(kTilt0));
+  const double energy_scale = kinetic0 + kMass * kGravity * (std::abs(kLength) + kRadius);
   Result r;
   r.steps = n;
   std::vector<double> times;
