@@ -8,6 +8,7 @@
 #include "common.hpp"
 #include "heavytop/io/map_file.hpp"
 #include "heavytop/report/report.hpp"
+#include "heavytop/table.hpp"
 
 #include <fmt/format.h>
 
@@ -15,7 +16,9 @@ namespace heavytop::cli {
 
 Action add_report_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("report", "Write DIR/report.html with figures (PNG, SVG) and data (CSV, JSON)");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"});
+  InputUses uses;
+  uses.table = true;  // SPEC section 16: a body on a table has its own report (write_table_report)
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"}, uses);
   auto t_end = std::make_shared<double>(0.0);
   auto* t_end_option = cmd->add_option("--t-end", *t_end, "s, horizon of the motion (default: a few precession periods)");
   auto map_file = std::make_shared<std::string>();
@@ -29,6 +32,10 @@ Action add_report_command(CLI::App& app) {
     if (inputs->output().empty() || inputs->output() == "-") throw InvalidInput("--output", "give the report's folder, e.g. --output report");
     if (t_end_option->count() && !(std::isfinite(*t_end) && *t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
     std::optional<report::ReportMap> map;
+    if (inputs->table().on_table() && !map_file->empty())
+      throw InvalidInput("--map", fmt::format("a stability map is drawn for a pivot; on a table (contact = \"{}\") the "
+                                              "report has no map",
+                                              name(inputs->table().contact)));
     if (!map_file->empty()) {
       map = report::ReportMap{.file = *map_file, .map = io::read_map(*map_file, "--map"), .held = {}, .values = {}};
       if (!slices->empty()) {
@@ -56,11 +63,14 @@ Action add_report_command(CLI::App& app) {
     for (const io::PartSpec& p : inputs->configuration().parts)
       parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
                              : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
-    report::write_report(inputs->output(), inputs->body(), inputs->state(),
-                         t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt, map,
-                         inputs->builtin_example() ? std::string() : inputs->config_path().empty()
-                                                                    ? std::string("A body given on the command line")
-                                                                    : inputs->config_path(), parts);
+    const std::string source = inputs->builtin_example()     ? std::string()
+                               : inputs->config_path().empty() ? std::string("A body given on the command line")
+                                                               : inputs->config_path();
+    const std::optional<double> horizon = t_end_option->count() ? std::optional<double>(*t_end) : std::nullopt;
+    if (inputs->table().on_table())  // SPEC section 16
+      report::write_table_report(inputs->output(), inputs->body(), inputs->table(), inputs->state(), horizon, source, parts);
+    else
+      report::write_report(inputs->output(), inputs->body(), inputs->state(), horizon, map, source, parts);
     std::cout << "heavytop: wrote " << (std::filesystem::path(inputs->output()) / "report.html").string() << "\n";
   };
 }

@@ -2,6 +2,7 @@
 
 #include "heavytop/simulate.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -490,6 +491,99 @@ Figure plot_lifetime(const std::string& dir, const Body& body, const InitialStat
                 "The spin and the tilt of the damped top against time: the spin decays by the torques of SPEC "
                 "section 6 through the critical spin (dashed), after which the tilt grows until the top falls.",
                 plot, scratch, 1500, 950);
+}
+
+}  // namespace heavytop::report
+
+namespace heavytop::report {
+
+namespace {
+
+/// The column `name` of a table run (simulate_on_table's extra columns).
+const std::vector<double>& table_column(const Trajectory& tr, std::string_view name) {
+  for (const auto& [key, column] : tr.extra)
+    if (key == name && column.size() == tr.size()) return column;
+  throw InvalidInput("trajectory", fmt::format("a table run needs its '{}' column", name));
+}
+
+}  // namespace
+
+std::vector<Figure> plot_table_motion(const std::string& dir, const TableRun& run, const TableAnswer& answer) {
+  const Scratch scratch(dir);
+  const Trajectory& tr = run.trajectory;
+  const std::vector<double>& tilt = table_column(tr, "tilt");
+  const std::vector<double>& spin = table_column(tr, "spin");
+  const std::vector<double>& x = table_column(tr, "x");
+  const std::vector<double>& y = table_column(tr, "y");
+  // The track in mm when it stays within 10 cm of where it started (a tippe top's few mm), else m.
+  double reach = 0.0;
+  for (std::size_t i = 0; i < tr.size(); ++i) reach = std::max({reach, std::abs(x[i]), std::abs(y[i])});
+  const bool mm = reach < 0.1;
+  const double unit = mm ? 1e3 : 1.0;
+  const char* unit_name = mm ? "mm" : "m";
+  const std::string data = scratch.file("table.dat");
+  {
+    std::ofstream out(scratch.path(data));
+    for (std::size_t i : display_samples(tr.size()))
+      out << fmt::format("{} {} {} {} {}\n", tr.t[i], tilt[i] * 180.0 / std::numbers::pi, spin[i], x[i] * unit,
+                         y[i] * unit);
+  }
+  // The answer's events, each a vertical line on the tilt's figure and a point on the track.
+  struct Event {
+    double t;
+    std::string words;
+  };
+  std::vector<Event> events;
+  if (answer.turns_over_at) events.push_back({*answer.turns_over_at, "turns over"});
+  if (answer.upright_at) events.push_back({*answer.upright_at, "upright"});
+  if (answer.falls_at) events.push_back({*answer.falls_at, "falls"});
+  if (answer.leaves_at) events.push_back({*answer.leaves_at, "leaves the table"});
+  const double end = tr.size() ? tr.t.back() : 0.0;
+  std::string arrows, points;
+  std::size_t k = 0;
+  for (const Event& e : events) {
+    if (!(e.t >= 0.0 && e.t <= end)) continue;
+    arrows += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead dt 2 lw 2 lc rgb '#d62728'\n"
+                          "set label '{1} at {0:.4g} s' at {0},graph {2} left offset 0.5,0 tc rgb '#d62728'\n",
+                          e.t, e.words, 0.95 - 0.07 * double(k));
+    // P at the event (the nearest sample).
+    const auto at = std::lower_bound(tr.t.begin(), tr.t.end(), e.t) - tr.t.begin();
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(at), tr.size() - 1);
+    points += fmt::format("set label '{}' at {},{} point pt 9 ps 2.2 lc rgb '#d62728' offset 1,1 tc rgb '#d62728'\n",
+                          e.words, x[i] * unit, y[i] * unit);
+    ++k;
+  }
+  double top = 0.0;
+  for (double v : tilt) top = std::max(top, v * 180.0 / std::numbers::pi);
+  const bool past_quarter = top > 80.0;
+  const std::string tilt_plot = fmt::format(
+      "set title 'The tilt on the table'\nset grid\nset key outside below center maxrows 1\n"
+      "set xlabel 't (s)'\nset ylabel 'tilt from the upward vertical (degrees)'\nset y2label 'spin w.k (rad/s)'\n"
+      "set ytics nomirror{}\nset y2tics\nset xrange [0:{}]\nset yrange [0:{}]\n{}"
+      "plot '{}' using 1:2 axes x1y1 with lines lw 3 lc rgb '#2ca02c' title 'tilt', "
+      "'' using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'spin w.k (axis)'{}\n",
+      past_quarter ? " 30" : "", end, past_quarter ? "180" : "*", arrows, data,
+      past_quarter ? ", 90 axes x1y1 with lines dt 3 lw 1.5 lc rgb '#555555' title 'a quarter turn (90 degrees)'" : "");
+  std::vector<Figure> out;
+  out.push_back(render("tilt",
+                       fmt::format("The tilt of the axis from the upward vertical (green, degrees) and the spin about "
+                                   "the axis (blue, rad/s) against time over {:.4g} s{}.",
+                                   end, events.empty() ? "" : ", the answer's events marked (red)"),
+                       tilt_plot, scratch, 1500, 900));
+  const std::string track_plot = fmt::format(
+      "set title 'The track of the contact point P, seen from above'\nset grid\nset key outside below center maxrows 1\n"
+      "set size ratio -1\nset xlabel 'x ({0})'\nset ylabel 'y ({0})'\nset offsets graph 0.05, graph 0.05, graph 0.05, "
+      "graph 0.05\n{1}"
+      "plot '{2}' using 4:5 with lines lw 2.5 lc rgb '#000000' title 'P on the table', "
+      "'' every ::0::0 using 4:5 with points pt 7 ps 2 lc rgb '#2ca02c' title 'start (t = 0)', "
+      "'' every ::{3}::{3} using 4:5 with points pt 5 ps 2 lc rgb '#1f77b4' title 'end (t = {4:.4g} s)'\n",
+      unit_name, points, data, display_samples(tr.size()).size() - 1, end);
+  out.push_back(render("track",
+                       fmt::format("The contact point P on the table seen from above ({}, x and y to the same scale) "
+                                   "over {:.4g} s: the start (green), the end (blue){}.",
+                                   unit_name, end, events.empty() ? "" : ", the answer's events (red)"),
+                       track_plot, scratch, 1200, 1100));
+  return out;
 }
 
 }  // namespace heavytop::report

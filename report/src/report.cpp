@@ -21,6 +21,8 @@
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/frames.hpp"
+#include "heavytop/table.hpp"
 #include "web_assets.hpp"
 
 namespace heavytop::report {
@@ -637,6 +639,175 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
 
   // Everything is made: put it in place, each file by a temporary name and a rename.
   figures.insert(figures.end(), map_figures.begin(), map_figures.end());
+  for (const Figure& f : figures)
+    for (const char* extension : {".png", ".svg"}) {
+      const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();
+      io::write_atomically((fs::path(dir) / (f.name + extension)).string(), [&](const std::string& to) {
+        fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+      });
+    }
+  for (const auto& [name, content] : data) write_output((fs::path(dir) / name).string(), content);
+}
+
+
+namespace {
+
+/// s, the motion a table's report shows: twice the answer's event (the turn-over, the rise to
+/// sleep, leaving the table; a fall and a fifth more), so that what follows it shows; else the
+/// answer's horizon.
+double table_report_horizon(const TableAnswer& a) {
+  if (a.falls_at && *a.falls_at > 0.0) return 1.2 * *a.falls_at;
+  for (const auto& event : {a.turns_over_at, a.upright_at, a.leaves_at})
+    if (event && *event > 0.0) return 2.0 * *event;
+  return a.horizon;
+}
+
+/// The column `name` of a table run.
+const std::vector<double>& run_column(const Trajectory& tr, std::string_view name) {
+  for (const auto& [key, column] : tr.extra)
+    if (key == name && column.size() == tr.size()) return column;
+  throw InvalidInput("trajectory", fmt::format("a table run needs its '{}' column", name));
+}
+
+/// What the 3D view draws on a table: view_json()'s (the attitude from theta, phi and the spin
+/// angle psi, psi' = w3 + theta' sin(phi) with w3 the run's `spin` column) and `table`: O's
+/// position at the samples shown (m; O = P + r e_zeta - rho u, u = (cos(tilt) k - e_zeta) /
+/// sin(tilt) the rim's direction down to P), P's track, the tip's and rim's radii.
+nlohmann::json table_view_json(const Body& body, const Table& table, const Trajectory& run,
+                               const std::vector<DrawnPart>& parts) {
+  Trajectory attitude = run;  // with the axial momentum C w3 that spin_angles() integrates
+  const std::vector<double>& spin = run_column(run, "spin");
+  std::vector<double> axial(spin.size());
+  for (std::size_t i = 0; i < spin.size(); ++i) axial[i] = body.C * spin[i];
+  attitude.extra.emplace_back("axial_momentum", std::move(axial));
+  nlohmann::json data = view_json(body, attitude, parts);
+  const std::vector<double>& x = run_column(run, "x");
+  const std::vector<double>& y = run_column(run, "y");
+  const std::vector<double>& height = run_column(run, "height");
+  std::vector<double> ox(run.size()), oy(run.size());
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    const Eigen::Vector3d k = axis_frame(run.phi[i], run.theta[i]).col(2);
+    const double s = std::hypot(k.x(), k.y());
+    const double across = s > 1e-12 ? body.rim_radius * k.z() / s : 0.0;  // rho cos(tilt) / sin(tilt)
+    ox[i] = x[i] - across * k.x();
+    oy[i] = y[i] - across * k.y();
+  }
+  const Shown shown(run.size());
+  data["table"] = {{"contact", name(table.contact)},
+                   {"tip_radius", body.tip_radius},
+                   {"rim_radius", body.rim_radius},
+                   {"origin", {{"x", shown.pick(ox)}, {"y", shown.pick(oy)}, {"z", shown.pick(height)}}},
+                   {"track", {{"x", shown.pick(x)}, {"y", shown.pick(y)}}}};
+  return data;
+}
+
+/// The 3D view on a table (heavytop-report.js's buildView() with D.table), or the note without it.
+std::string table_view_html(const Trajectory& run) {
+  if (const char* why = detail::web_assets_missing())
+    return fmt::format("<p class='note' id='no-interactive'>No interactive view in this report: {}. The static "
+                       "figures below show the same motion.</p>\n", html_escape(why));
+  return fmt::format(R"(<section id='interactive'>
+<h2>Watch it move</h2>
+<p>The full nonlinear motion on the table, as heavytop computed it. The body is drawn as its contact shape (the tip's
+sphere, or the rim) or its parts; the red marker turns with the body at its true spin angle. The table is the grid at
+height 0; the black line on it is the track of the contact point P so far. Drag to turn the view, scroll to zoom. Inset
+(bottom right): straight down on the tip of the axis, xi to the right, eta up, <span id='inset-scale'></span> from
+centre to edge.</p>
+<div id='scene'></div>
+<div class='controls'><button id='play'>Pause</button>
+<label>speed <input type='range' id='speed' min='0' max='1' step='1'> <span id='speed-value'></span></label>
+<label>time <input type='range' id='scrub' min='0' max='10000' value='0' step='1'></label> <span id='time'></span></div>
+<p class='note' id='spin-note' hidden></p>
+<p><small>Display data: {0} of the {1} computed samples (six digits); <a href='trajectories.csv'>trajectories.csv</a>
+has them all.</small></p>
+</section>
+)",
+                     display_samples(run.size()).size(), run.size());
+}
+
+}  // namespace
+
+void write_table_report(const std::string& dir, const Body& body, const Table& table, const InitialState& state,
+                        std::optional<double> t_end, const std::string& source, const std::vector<DrawnPart>& parts) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw InvalidInput("--output", fmt::format("cannot create the folder '{}'", dir));
+  const io::OutputLock lock((fs::path(dir) / "report").string(), "--output", dir);
+  const Staging staging;
+
+  // The answer first (SPEC 14 and 16), as `stability` gives it; then one run over the motion shown.
+  const TableAnalysis analysis = analyse_top_on_table(body, table, state);
+  const TableAnswer& answer = analysis.answer;
+  const double horizon = t_end.value_or(table_report_horizon(answer));
+  const TableRun run = simulate_on_table(body, table, state, SampleGrid{horizon, 4001});
+  const Trajectory& tr = run.trajectory;
+  const std::vector<Figure> figures = plot_table_motion(staging.path(), run, answer);
+
+  std::vector<std::pair<std::string, std::string>> data = {
+      {"stability.json", io::table_stability_json(body, table, analysis, analyse_stability(body, analysis.spin))},
+      {"trajectories.csv", io::trajectory_csv(tr)},
+  };
+  const auto assets = detail::web_assets();
+  if (!assets.empty())
+    data.emplace_back("report-data.js", "// Written by heavytop report: the numbers behind report.html's interactive "
+                                        "view.\nwindow.HEAVYTOP_REPORT = " +
+                                            table_view_json(body, table, tr, parts).dump() + ";\n");
+
+  std::ostringstream html;
+  const std::string title = fmt::format("{}: {} on a table", source.empty() ? "The built-in example" : source,
+                                        body_words(body));
+  html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop: " << html_escape(title)
+       << "</title><style>" << kStyle << "</style>\n";
+  if (!assets.empty()) html << "<script src='report-data.js'></script>\n<script src='heavytop-report.js' defer></script>\n";
+  html << "<style>pre.details { background: #f6f6f6; padding: .8em 1em; overflow-x: auto; font-size: .9em; }</style>\n";
+  html << "</head><body>\n<h1>" << html_escape(title) << "</h1>\n";
+  const auto exact = [](const std::optional<double>& x) { return x ? fmt::format("{:.17g}", *x) : std::string("null"); };
+  // The answer's words as `stability` prints them: the headline, then the rest of its text.
+  const std::string headline = io::table_answer_headline(answer);
+  std::string words = io::table_answer_text(answer, table);
+  if (words.rfind(headline, 0) == 0) words.erase(0, headline.size());
+  const bool bad = answer.verdict == AnswerVerdict::Falls || answer.verdict == AnswerVerdict::LeavesTable;
+  html << fmt::format("<section id='answer' data-verdict='{}' data-proven='{}' data-turns-over-at='{}' "
+                      "data-upright-at='{}' data-falls-at='{}' data-leaves-at='{}' data-track='{:.17g}'>\n"
+                      "<h2>What does it do on the table?</h2>\n<p class='answer {}'><b>{}</b>{}</p>\n",
+                      name(answer.verdict), answer.proven, exact(answer.turns_over_at), exact(answer.upright_at),
+                      exact(answer.falls_at), exact(answer.leaves_at), answer.track,
+                      bad ? "falls" : answer.proven ? "up" : "unproven", html_escape(headline), html_escape(words));
+  // The details `stability` gives after the answer: the body and the spinning states.
+  std::string details = io::table_stability_text(body, table, analysis);
+  if (const auto at = details.find("The details\n"); at != std::string::npos) details.erase(0, at);
+  html << "<pre class='details'>" << html_escape(details) << "</pre>\n</section>\n";
+  html << table_view_html(tr);
+  html << fmt::format("<h2>How does it move?</h2>\n<p>One run of the body on the table over {:.4g} s{} ({} integrator "
+                      "steps, relative energy drift {:.1e}{}{}).</p>\n",
+                      tr.size() ? tr.t.back() : 0.0,
+                      t_end ? "" : answer.turns_over_at || answer.upright_at || answer.falls_at || answer.leaves_at
+                                       ? " (past the answer's event, to show what follows)"
+                                       : " (the answer's horizon)",
+                      run.summary.steps, run.summary.max_relative_energy_drift,
+                      run.summary.switches ? fmt::format(", {} switches between sticking and slipping", run.summary.switches)
+                                           : std::string(),
+                      run.summary.end == TableSummary::End::LeftTable
+                          ? fmt::format("; it leaves the table at t = {:.6g} s, where the run ends", run.summary.end_time)
+                          : std::string());
+  for (const Figure& f : figures)
+    html << fmt::format("<figure id='figure-{0}'><img src='{0}.svg' alt='{1}'><figcaption>{1} (<a href='{0}.png'>PNG</a>, "
+                        "<a href='{0}.svg'>SVG</a>)</figcaption></figure>\n",
+                        f.name, html_escape(f.caption));
+  std::string columns;
+  for (const auto& c : tr.column_names()) columns += (columns.empty() ? "" : ", ") + c;
+  html << "<h2>Data</h2>\n<ul><li><a href='stability.json'>stability.json</a>: as <code>heavytop stability --format "
+          "json</code> on this table</li><li><a href='trajectories.csv'>trajectories.csv</a>: the run, as <code>heavytop "
+          "simulate</code> on this table (columns "
+       << html_escape(columns) << "; SI units)</li>"
+       << (assets.empty() ? "" : "<li><a href='report-data.js'>report-data.js</a>: what the interactive view draws "
+                                 "(decimated for display, six digits), with the spin angle psi and O's position</li>")
+       << "</ul>\n<p><small>Made by heavytop. Units SI (angles in rad unless degrees are named); the table is SPEC "
+          "section 16 (docs/table.md and docs/contract.md in its repository).</small></p>\n</body></html>\n";
+  for (const auto& asset : assets)
+    data.emplace_back(asset.name, std::string(reinterpret_cast<const char*>(asset.data), asset.size));
+  data.emplace_back("report.html", html.str());
+
   for (const Figure& f : figures)
     for (const char* extension : {".png", ".svg"}) {
       const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();

@@ -10,7 +10,7 @@
 import {
   AmbientLight, Box3, BoxGeometry, BufferAttribute, BufferGeometry, Color, ConeGeometry, CylinderGeometry, DirectionalLight,
   DoubleSide, Float32BufferAttribute, GridHelper, Group, Line, LineBasicMaterial, LineDashedMaterial, Matrix4, Mesh,
-  MeshBasicMaterial, MeshStandardMaterial, OrthographicCamera, PerspectiveCamera, RingGeometry, Scene, SphereGeometry,
+  MeshBasicMaterial, MeshStandardMaterial, OrthographicCamera, PerspectiveCamera, PlaneGeometry, RingGeometry, Scene, SphereGeometry,
   TorusGeometry, Vector3, WebGLRenderer,
 } from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
@@ -224,6 +224,35 @@ function buildBody(D) {
   return { group, shapes, size, zTrace: zTop, spindle: true };
 }
 
+// On a table (D.table, SPEC section 16) a body given by its moments is drawn as what touches
+// the table: the rim (a disc of radius rho about the axis through O, thickened by the tip's
+// radius r), or the tip's sphere (radius r about O): the whole body when the sphere is as large as
+// the equivalent ellipsoid (a tippe top, its upper cap dark so that the axis shows), else under
+// the ellipsoid and spindle (a top on its round point).
+function buildTableBody(D) {
+  const r = D.table.tip_radius, rho = D.table.rim_radius;
+  const material = () => new MeshStandardMaterial({ vertexColors: true, roughness: 0.6 });
+  if (rho > 0) {
+    const group = new Group(), h = Math.max(2 * r, 0.08 * rho);
+    group.add(new Mesh(paintSectors(new CylinderGeometry(rho + r, rho + r, h, 96).rotateX(Math.PI / 2), TONES[3], rho), material()));
+    group.add(new Mesh(new TorusGeometry(rho, Math.max(r, 0.03 * rho), 12, 128), new MeshStandardMaterial({ color: 0x6b5a2a })));
+    return { group, shapes: [{ shape: "rim", radius: rho, thickness: h, uuid: group.children[0].uuid }], size: rho + r, zTrace: rho, spindle: false };
+  }
+  const base = buildBody(D);
+  if (!(r > 0)) return base;
+  const ball = paintSectors(new SphereGeometry(r, 64, 32).rotateX(Math.PI / 2), TONES[1], r);
+  if (r < 0.5 * base.size) {
+    base.group.add(new Mesh(ball, material()));
+    base.shapes.push({ shape: "tip", radius: r });
+    return base;
+  }
+  const p = ball.attributes.position, c = ball.attributes.color;
+  for (let i = 0; i < p.count; i++) if (p.getZ(i) > 0.72 * r) c.setXYZ(i, 0.22, 0.24, 0.28);
+  const group = new Group();
+  group.add(new Mesh(ball, material()));
+  return { group, shapes: [{ shape: "ball", radius: r, uuid: group.children[0].uuid }], size: r, zTrace: r, spindle: false };
+}
+
 // Points of the body (its own axes), at most `most` of them, for its extent over the motion.
 function bodyPoints(group, most) {
   const all = [];
@@ -273,8 +302,14 @@ function buildView(D) {
   const host = $("scene");
   const lifetime = new AbortController(), signal = lifetime.signal;
   const t = D.t, n = t.length, T = t[n - 1];
-  const body = buildBody(D);
+  // On a table (SPEC section 16): O moves (D.table.origin, m, at the samples), the table is the
+  // plane z = 0 and the contact point P leaves its track on it (D.table.track).
+  const onTable = D.table || null;
+  const body = onTable && !(D.parts && D.parts.length) ? buildTableBody(D) : buildBody(D);
   const { size, zTrace } = body;
+  const originAt = (i, out) => (onTable ? out.set(onTable.origin.x[i], onTable.origin.y[i], onTable.origin.z[i]) : out.set(0, 0, 0));
+  const originLerp = (u, out) => (onTable ? out.set(lerp(onTable.origin.x, u), lerp(onTable.origin.y, u), lerp(onTable.origin.z, u)) : out.set(0, 0, 0));
+  const o = new Vector3();
 
   // One renderer (one WebGL context, its compiled shaders) for every view built in this page: a
   // new context for each of the explorer's runs took 0.3 to 1 s under SwiftShader.
@@ -309,13 +344,14 @@ function buildView(D) {
       attitude(D.nonlinear.theta[i], D.nonlinear.phi[i], D.nonlinear.psi[i], R);
       if (exaggerated) exaggerate(R);
       const e = R.elements;
+      originAt(i, o);
       for (const q of points) {
-        v.set(e[0] * q[0] + e[4] * q[1] + e[8] * q[2], e[1] * q[0] + e[5] * q[1] + e[9] * q[2], e[2] * q[0] + e[6] * q[1] + e[10] * q[2]);
+        v.set(e[0] * q[0] + e[4] * q[1] + e[8] * q[2], e[1] * q[0] + e[5] * q[1] + e[9] * q[2], e[2] * q[0] + e[6] * q[1] + e[10] * q[2]).add(o);
         lo.min(v); hi.max(v);
       }
       axisOf(D.nonlinear.theta[i], D.nonlinear.phi[i], v);
       if (exaggerated) exaggerateAxis(v);
-      v.multiplyScalar(zTrace);
+      v.multiplyScalar(zTrace).add(o);
       lo.min(v); hi.max(v);
     }
     return { lo, hi };
@@ -324,18 +360,34 @@ function buildView(D) {
   // no exaggeration for it.
   let leastTilt = Math.PI;
   for (let i = 0; i < n; i++) leastTilt = Math.min(leastTilt, Math.acos(Math.max(-1, Math.min(1, axisOf(D.nonlinear.theta[i], D.nonlinear.phi[i], v).z))));
-  const exaggerable = EXAGGERATION * leastTilt < 0.9 * Math.PI;
+  const exaggerable = !onTable && EXAGGERATION * leastTilt < 0.9 * Math.PI;
   const truth = extentOf(false), extents = [truth, exaggerable ? extentOf(true) : truth];
   const floorOf = (ext) => (ext.lo.z >= -1e-3 * size ? 0 : ext.lo.z - 0.04 * size);
-  const floors = extents.map(floorOf);
+  const floors = onTable ? [0, 0] : extents.map(floorOf);
 
   // The fixed frame: the floor (a grid) below the body, a stand from it up to O when O is above
   // it, a mount above O for a hanging body, the vertical.
   const reachXY = Math.max(...extents.map((e) => Math.max(-e.lo.x, e.hi.x, -e.lo.y, e.hi.y)), 0.5 * size);
-  const gridSide = 2.6 * reachXY;
-  const grid = new GridHelper(gridSide, 12, 0xb0b8c0, 0xd5dade);
+  const gridSide = onTable ? Math.max(...extents.map((e) => Math.max(e.hi.x - e.lo.x, e.hi.y - e.lo.y))) + 3 * size : 2.6 * reachXY;
+  const grid = new GridHelper(gridSide, onTable ? 16 : 12, 0xb0b8c0, 0xd5dade);
   grid.rotation.x = Math.PI / 2;
   scene.add(grid);
+  let track = null;
+  if (onTable) {  // the table: a plane under the grid, centred on the motion; P's track on it
+    const cx = 0.5 * (extents[0].lo.x + extents[0].hi.x), cy = 0.5 * (extents[0].lo.y + extents[0].hi.y);
+    grid.position.set(cx, cy, 0);
+    const plane = new Mesh(new PlaneGeometry(gridSide, gridSide), new MeshStandardMaterial({ color: 0xeae3d6, roughness: 0.9, side: DoubleSide }));
+    plane.position.set(cx, cy, -2e-3 * size);
+    scene.add(plane);
+    const pts = new Float32Array(3 * n);
+    for (let i = 0; i < n; i++) pts.set([onTable.track.x[i], onTable.track.y[i], 2e-3 * size], 3 * i);
+    const g = new BufferGeometry();
+    g.setAttribute("position", new BufferAttribute(pts, 3));
+    g.setDrawRange(0, 0);
+    track = new Line(g, new LineBasicMaterial({ color: 0x000000 }));
+    track.frustumCulled = false;
+    scene.add(track);
+  }
   const standMaterial = new MeshStandardMaterial({ color: 0x8a939b, metalness: 0.3, roughness: 0.5 });
   const stand = new Mesh(new CylinderGeometry(size / 70, size / 70, 1, 16).rotateX(Math.PI / 2).translate(0, 0, -0.5), standMaterial);
   const foot = new Mesh(new CylinderGeometry(size / 9, size / 8, size / 40, 48).rotateX(Math.PI / 2).translate(0, 0, size / 80), standMaterial);
@@ -358,7 +410,8 @@ function buildView(D) {
     state.lowest = extents[state.exaggerated ? 1 : 0].lo.z;
     grid.position.z = z;
     // A top whose body reaches below O stands on a post; a hanging body's mount needs none.
-    stand.visible = foot.visible = z < 0 && D.body.length >= 0;
+    stand.visible = foot.visible = !onTable && z < 0 && D.body.length >= 0;
+    vertical.visible = pivot.visible = !onTable;
     stand.scale.set(1, 1, -z || 1);
     foot.position.z = z;
     vertical.geometry.setFromPoints([new Vector3(0, 0, z), new Vector3(0, 0, 1.25 * zHigh)]);
@@ -400,6 +453,10 @@ function buildView(D) {
   scene.add(truthTrace);
   const tipMark = new Mesh(new SphereGeometry(size / 45, 16, 8), new MeshStandardMaterial({ color: 0x000000 }));
   scene.add(tipMark);
+  if (onTable) {  // the axis's path only in the inset (about O, wherever O is); P's track in the view
+    truthTrace.layers.set(1);
+    tipMark.visible = false;
+  }
   const overlays = D.models.map((m) => {
     const color = new Color(COLORS[m.name] || "#777777");
     const rod = new Line(new BufferGeometry().setFromPoints([new Vector3(), new Vector3(0, 0, zTrace)]),
@@ -547,6 +604,12 @@ function buildView(D) {
     if (state.exaggerated) exaggerate(R);
     state.drawnTilt = Math.acos(Math.max(-1, Math.min(1, R.elements[10])));
     bodyGroup.matrix.copy(R);
+    if (onTable) {
+      originLerp(u, o);
+      bodyGroup.matrix.setPosition(o);
+      state.origin = o.toArray();
+      track.geometry.setDrawRange(0, i + 1);
+    }
     bodyGroup.matrixWorldNeedsUpdate = true;
     tip(th, ph, v);
     tipMark.position.copy(v);
@@ -814,7 +877,9 @@ function buildExplorer(D) {
 
 function start() {
   const D = window.HEAVYTOP_REPORT;
-  for (const [name, build] of [["3D view", buildView], ["plots", buildPlots], ["stability explorer", buildExplorer]]) {
+  // On a table (D.table) the page has the 3D view only; its figures are static.
+  const parts = D.table ? [["3D view", buildView]] : [["3D view", buildView], ["plots", buildPlots], ["stability explorer", buildExplorer]];
+  for (const [name, build] of parts) {
     try {
       build(D);
     } catch (err) {

@@ -11,6 +11,7 @@
 #include "heavytop/compare.hpp"
 #include "heavytop/lifetime.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::report {
 
@@ -81,5 +82,11 @@ Figure plot_sweep_map(const std::string& dir, const StabilityMap& map, const std
 /// from the damped nonlinear run of `life`, the critical spin as a line, the time the spin law
 /// reaches it and the fall marked.
 Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life);
+
+/// The body on a table (SPEC section 16), two figures from its run `run` (simulate_on_table's
+/// columns) and its answer: "tilt" (the tilt from the upward vertical and the spin w.k against
+/// time, the answer's events marked: the turn-over, the rise to sleep, a fall, leaving the
+/// table) and "track" (the contact point P's path seen from above, x and y to the same scale).
+std::vector<Figure> plot_table_motion(const std::string& dir, const TableRun& run, const TableAnswer& answer);
 
 }  // namespace heavytop::report

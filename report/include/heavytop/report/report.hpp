@@ -14,6 +14,7 @@
 #include "heavytop/mass_properties.hpp"
 #include "heavytop/state.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::report {
 
@@ -58,6 +59,19 @@ inline constexpr unsigned long long kMaxDrawnMeshBytes = 48ull << 20;
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
                   const std::optional<ReportMap>& map = std::nullopt, const std::string& source = "",
                   const std::vector<DrawnPart>& parts = {});
+
+/// Writes the report for `body` on `table` (SPEC section 16; not the pivot) started at `state`
+/// into folder `dir`, as write_report() does for a pivot: the answer on the table first (io's
+/// table_answer_text, from analyse_top_on_table), the 3D view (the table, the body moving across
+/// it, the track of the contact point P), the tilt against time and P's track seen from above
+/// (figures "tilt" and "track"), the spinning states' stability, and the data (stability.json as
+/// `stability --format json`, trajectories.csv as `simulate` on the table). The motion shown is
+/// one run of simulate_on_table over `t_end` (s; default: twice the answer's event, the turn-over,
+/// the rise to sleep, a fall or leaving the table, else the answer's horizon). Throws as
+/// write_report() does, and std::runtime_error for a failed run.
+void write_table_report(const std::string& dir, const Body& body, const Table& table, const InitialState& state,
+                        std::optional<double> t_end, const std::string& source = "",
+                        const std::vector<DrawnPart>& parts = {});
 
 /// What the report's 3D view draws, as the JSON text of an object (the part of report-data.js's
 /// window.HEAVYTOP_REPORT that report/web/src/main.js's view reads): `body` (its moments, kg m^2,
