@@ -524,7 +524,8 @@ std::vector<Figure> plot_table_motion(const std::string& dir, const TableRun& ru
   const std::string data = scratch.file("table.dat");
   {
     std::ofstream out(scratch.path(data));
-    for (std::size_t i : display_samples(tr.size()))
+    // Every sample (the run's 4001): the tilt's nutation and P's small loops would alias at fewer.
+    for (std::size_t i = 0; i < tr.size(); ++i)
       out << fmt::format("{} {} {} {} {}\n", tr.t[i], tilt[i] * 180.0 / std::numbers::pi, spin[i], x[i] * unit,
                          y[i] * unit);
   }
@@ -557,11 +558,11 @@ std::vector<Figure> plot_table_motion(const std::string& dir, const TableRun& ru
   for (double v : tilt) top = std::max(top, v * 180.0 / std::numbers::pi);
   const bool past_quarter = top > 80.0;
   const std::string tilt_plot = fmt::format(
-      "set title 'The tilt on the table'\nset grid\nset key outside below center maxrows 1\n"
+      "set title 'The tilt on the table'\nset grid\nset key outside top center horizontal maxrows 1 samplen 2\n"
       "set xlabel 't (s)'\nset ylabel 'tilt from the upward vertical (degrees)'\nset y2label 'spin w.k (rad/s)'\n"
       "set ytics nomirror{}\nset y2tics\nset xrange [0:{}]\nset yrange [0:{}]\n{}"
-      "plot '{}' using 1:2 axes x1y1 with lines lw 3 lc rgb '#2ca02c' title 'tilt', "
-      "'' using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'spin w.k (axis)'{}\n",
+      "plot '{}' using 1:2 axes x1y1 with lines lw 2 lc rgb '#2ca02c' title 'tilt', "
+      "'' using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'spin w.k'{}\n",
       past_quarter ? " 30" : "", end, past_quarter ? "180" : "*", arrows, data,
       past_quarter ? ", 90 axes x1y1 with lines dt 3 lw 1.5 lc rgb '#555555' title 'a quarter turn (90 degrees)'" : "");
   std::vector<Figure> out;
@@ -571,18 +572,25 @@ std::vector<Figure> plot_table_motion(const std::string& dir, const TableRun& ru
                                    end, events.empty() ? "" : ", the answer's events marked (red)"),
                        tilt_plot, scratch, 1500, 900));
   const std::string track_plot = fmt::format(
-      "set title 'The track of the contact point P, seen from above'\nset grid\nset key outside below center maxrows 1\n"
+      "set title 'The track of the contact point P, seen from above'\nset grid\n"
+      "set key outside top center horizontal maxrows 1 samplen 2\n"
       "set size ratio -1\nset xlabel 'x ({0})'\nset ylabel 'y ({0})'\nset offsets graph 0.05, graph 0.05, graph 0.05, "
       "graph 0.05\n{1}"
       "plot '{2}' using 4:5 with lines lw 2.5 lc rgb '#000000' title 'P on the table', "
       "'' every ::0::0 using 4:5 with points pt 7 ps 2 lc rgb '#2ca02c' title 'start (t = 0)', "
       "'' every ::{3}::{3} using 4:5 with points pt 5 ps 2 lc rgb '#1f77b4' title 'end (t = {4:.4g} s)'\n",
-      unit_name, points, data, display_samples(tr.size()).size() - 1, end);
+      unit_name, points, data, tr.size() - 1, end);
+  // The canvas shaped like the track (x and y to the same scale), 1400 wide, 500 to 1400 high.
+  double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0;
+  for (std::size_t i = 0; i < tr.size(); ++i)
+    x_lo = std::min(x_lo, x[i]), x_hi = std::max(x_hi, x[i]), y_lo = std::min(y_lo, y[i]), y_hi = std::max(y_hi, y[i]);
+  const double aspect = (y_hi - y_lo) / std::max(x_hi - x_lo, 1e-12);
+  const int track_height = static_cast<int>(std::clamp(1100.0 * aspect + 330.0, 500.0, 1400.0));
   out.push_back(render("track",
                        fmt::format("The contact point P on the table seen from above ({}, x and y to the same scale) "
                                    "over {:.4g} s: the start (green), the end (blue){}.",
                                    unit_name, end, events.empty() ? "" : ", the answer's events (red)"),
-                       track_plot, scratch, 1200, 1100));
+                       track_plot, scratch, 1400, track_height));
   return out;
 }
 

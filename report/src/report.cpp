@@ -652,14 +652,18 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
 
 namespace {
 
+/// s, the longest motion a table's report shows without an event (the first part of the
+/// answer's horizon: a rolling coin's wobble over the answer's 100 s fills a figure solid).
+constexpr double kTableShownHorizon = 10.0;
+
 /// s, the motion a table's report shows: twice the answer's event (the turn-over, the rise to
 /// sleep, leaving the table; a fall and a fifth more), so that what follows it shows; else the
-/// answer's horizon.
+/// answer's horizon, at most kTableShownHorizon.
 double table_report_horizon(const TableAnswer& a) {
   if (a.falls_at && *a.falls_at > 0.0) return 1.2 * *a.falls_at;
   for (const auto& event : {a.turns_over_at, a.upright_at, a.leaves_at})
     if (event && *event > 0.0) return 2.0 * *event;
-  return a.horizon;
+  return std::min(a.horizon, kTableShownHorizon);
 }
 
 /// The column `name` of a table run.
@@ -693,11 +697,18 @@ nlohmann::json table_view_json(const Body& body, const Table& table, const Traje
     oy[i] = y[i] - across * k.y();
   }
   const Shown shown(run.size());
+  const auto every = [](const std::vector<double>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (std::size_t i = 0; i < v.size(); ++i) a.push_back(Shown::value(v, i));
+    return a;
+  };
   data["table"] = {{"contact", name(table.contact)},
                    {"tip_radius", body.tip_radius},
                    {"rim_radius", body.rim_radius},
                    {"origin", {{"x", shown.pick(ox)}, {"y", shown.pick(oy)}, {"z", shown.pick(height)}}},
-                   {"track", {{"x", shown.pick(x)}, {"y", shown.pick(y)}}}};
+                   // P at every computed sample: its small loops at the nutation's frequency alias at the
+                   // display's samples.
+                   {"track", {{"t", every(run.t)}, {"x", every(x)}, {"y", every(y)}}}};
   return data;
 }
 
@@ -709,14 +720,14 @@ std::string table_view_html(const Trajectory& run) {
   return fmt::format(R"(<section id='interactive'>
 <h2>Watch it move</h2>
 <p>The full nonlinear motion on the table, as heavytop computed it. The body is drawn as its contact shape (the tip's
-sphere, or the rim) or its parts; the red marker turns with the body at its true spin angle. The table is the grid at
-height 0; the black line on it is the track of the contact point P so far. Drag to turn the view, scroll to zoom. Inset
-(bottom right): straight down on the tip of the axis, xi to the right, eta up, <span id='inset-scale'></span> from
-centre to edge.</p>
+sphere, or the rim) or its parts; the red sector turns with the body at its true spin angle. The table is the grid at
+height 0; the black line on it is the track of the contact point P so far. Drag to turn the view, scroll to zoom.<span
+id='inset-scale' hidden></span></p>
 <div id='scene'></div>
 <div class='controls'><button id='play'>Pause</button>
 <label>speed <input type='range' id='speed' min='0' max='1' step='1'> <span id='speed-value'></span></label>
-<label>time <input type='range' id='scrub' min='0' max='10000' value='0' step='1'></label> <span id='time'></span></div>
+<label>time <input type='range' id='scrub' min='0' max='10000' value='0' step='1'></label> <span id='time'></span>
+<label><input type='checkbox' id='follow' checked> follow the body (untick: the whole track)</label></div>
 <p class='note' id='spin-note' hidden></p>
 <p><small>Display data: {0} of the {1} computed samples (six digits); <a href='trajectories.csv'>trajectories.csv</a>
 has them all.</small></p>
@@ -754,12 +765,16 @@ void write_table_report(const std::string& dir, const Body& body, const Table& t
                                             table_view_json(body, table, tr, parts).dump() + ";\n");
 
   std::ostringstream html;
-  const std::string title = fmt::format("{}: {} on a table", source.empty() ? "The built-in example" : source,
-                                        body_words(body));
+  const std::string title = fmt::format(
+      "{}: {} {} on a table", source.empty() ? "The built-in example" : source,
+      is_symmetric(body) ? "a symmetric" : "an asymmetric",
+      body.rim_radius > 0.0 ? fmt::format("body on its rim ({:g} m)", body.rim_radius)
+      : body.tip_radius > 0.0 ? fmt::format("body on a round tip ({:g} m)", body.tip_radius)
+                              : std::string("body on a sharp point"));
   html << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>heavytop: " << html_escape(title)
        << "</title><style>" << kStyle << "</style>\n";
   if (!assets.empty()) html << "<script src='report-data.js'></script>\n<script src='heavytop-report.js' defer></script>\n";
-  html << "<style>pre.details { background: #f6f6f6; padding: .8em 1em; overflow-x: auto; font-size: .9em; }</style>\n";
+  html << "<style>pre.details { background: #f6f6f6; padding: .8em 1em; white-space: pre-wrap; font-size: .9em; }</style>\n";
   html << "</head><body>\n<h1>" << html_escape(title) << "</h1>\n";
   const auto exact = [](const std::optional<double>& x) { return x ? fmt::format("{:.17g}", *x) : std::string("null"); };
   // The answer's words as `stability` prints them: the headline, then the rest of its text.
@@ -767,24 +782,33 @@ void write_table_report(const std::string& dir, const Body& body, const Table& t
   std::string words = io::table_answer_text(answer, table);
   if (words.rfind(headline, 0) == 0) words.erase(0, headline.size());
   const bool bad = answer.verdict == AnswerVerdict::Falls || answer.verdict == AnswerVerdict::LeavesTable;
+  const bool known = answer.proven || answer.verdict == AnswerVerdict::StaysUp;  // an event, or the rise to sleep
   html << fmt::format("<section id='answer' data-verdict='{}' data-proven='{}' data-turns-over-at='{}' "
                       "data-upright-at='{}' data-falls-at='{}' data-leaves-at='{}' data-track='{:.17g}'>\n"
                       "<h2>What does it do on the table?</h2>\n<p class='answer {}'><b>{}</b>{}</p>\n",
                       name(answer.verdict), answer.proven, exact(answer.turns_over_at), exact(answer.upright_at),
                       exact(answer.falls_at), exact(answer.leaves_at), answer.track,
-                      bad ? "falls" : answer.proven ? "up" : "unproven", html_escape(headline), html_escape(words));
+                      bad ? "falls" : known ? "up" : "unproven", html_escape(headline), html_escape(words));
   // The details `stability` gives after the answer: the body and the spinning states.
   std::string details = io::table_stability_text(body, table, analysis);
   if (const auto at = details.find("The details\n"); at != std::string::npos) details.erase(0, at);
   html << "<pre class='details'>" << html_escape(details) << "</pre>\n</section>\n";
   html << table_view_html(tr);
   html << fmt::format("<h2>How does it move?</h2>\n<p>One run of the body on the table over {:.4g} s{} ({} integrator "
-                      "steps, relative energy drift {:.1e}{}{}).</p>\n",
+                      "steps{}{}{}).</p>\n",
                       tr.size() ? tr.t.back() : 0.0,
-                      t_end ? "" : answer.turns_over_at || answer.upright_at || answer.falls_at || answer.leaves_at
-                                       ? " (past the answer's event, to show what follows)"
-                                       : " (the answer's horizon)",
-                      run.summary.steps, run.summary.max_relative_energy_drift,
+                      t_end ? std::string()
+                      : answer.turns_over_at || answer.upright_at || answer.falls_at || answer.leaves_at
+                          ? std::string(" (past the answer's event, to show what follows)")
+                      : answer.horizon > kTableShownHorizon
+                          ? fmt::format(" (the first {:g} s of the answer's {:.4g} s; <code>--t-end</code> shows more)",
+                                        kTableShownHorizon, answer.horizon)
+                          : std::string(" (the answer's horizon)"),
+                      run.summary.steps,
+                      // Friction takes energy: its drift is the loss, not an error.
+                      table.contact == Contact::Sliding
+                          ? std::string()
+                          : fmt::format(", relative energy drift {:.1e}", run.summary.max_relative_energy_drift),
                       run.summary.switches ? fmt::format(", {} switches between sticking and slipping", run.summary.switches)
                                            : std::string(),
                       run.summary.end == TableSummary::End::LeftTable

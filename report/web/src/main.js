@@ -235,7 +235,8 @@ function buildTableBody(D) {
   if (rho > 0) {
     const group = new Group(), h = Math.max(2 * r, 0.08 * rho);
     group.add(new Mesh(paintSectors(new CylinderGeometry(rho + r, rho + r, h, 96).rotateX(Math.PI / 2), TONES[3], rho), material()));
-    group.add(new Mesh(new TorusGeometry(rho, Math.max(r, 0.03 * rho), 12, 128), new MeshStandardMaterial({ color: 0x6b5a2a })));
+    const tube = Math.max(r, 0.03 * rho);  // the rim's edge at rho + r, as the table meets it
+    group.add(new Mesh(new TorusGeometry(rho + r - tube, tube, 12, 128), new MeshStandardMaterial({ color: 0x6b5a2a })));
     return { group, shapes: [{ shape: "rim", radius: rho, thickness: h, uuid: group.children[0].uuid }], size: rho + r, zTrace: rho, spindle: false };
   }
   const base = buildBody(D);
@@ -369,7 +370,8 @@ function buildView(D) {
   // it, a mount above O for a hanging body, the vertical.
   const reachXY = Math.max(...extents.map((e) => Math.max(-e.lo.x, e.hi.x, -e.lo.y, e.hi.y)), 0.5 * size);
   const gridSide = onTable ? Math.max(...extents.map((e) => Math.max(e.hi.x - e.lo.x, e.hi.y - e.lo.y))) + 3 * size : 2.6 * reachXY;
-  const grid = new GridHelper(gridSide, onTable ? 16 : 12, 0xb0b8c0, 0xd5dade);
+  // On a table, a cell about the body's width (at most 200 a side).
+  const grid = new GridHelper(gridSide, onTable ? Math.max(8, Math.min(200, Math.round(gridSide / (2 * size)))) : 12, 0xb0b8c0, 0xd5dade);
   grid.rotation.x = Math.PI / 2;
   scene.add(grid);
   let track = null;
@@ -379,8 +381,10 @@ function buildView(D) {
     const plane = new Mesh(new PlaneGeometry(gridSide, gridSide), new MeshStandardMaterial({ color: 0xeae3d6, roughness: 0.9, side: DoubleSide }));
     plane.position.set(cx, cy, -2e-3 * size);
     scene.add(plane);
-    const pts = new Float32Array(3 * n);
-    for (let i = 0; i < n; i++) pts.set([onTable.track.x[i], onTable.track.y[i], 2e-3 * size], 3 * i);
+    // Every computed sample of P (its small loops at the nutation's frequency would alias at the
+    // display's samples).
+    const m = onTable.track.t.length, pts = new Float32Array(3 * m);
+    for (let i = 0; i < m; i++) pts.set([onTable.track.x[i], onTable.track.y[i], 2e-3 * size], 3 * i);
     const g = new BufferGeometry();
     g.setAttribute("position", new BufferAttribute(pts, 3));
     g.setDrawRange(0, 0);
@@ -482,8 +486,10 @@ function buildView(D) {
   const direction = new Vector3(2.3, -3.0, 1.3).normalize();
   // The nearest camera along `direction` that sees every corner of the box, left of the inset
   // (which covers the right quarter of the view's lower part).
-  const corners = [0, 1, 2, 3, 4, 5, 6, 7].map((c) => new Vector3(c & 1 ? box.max.x : box.min.x, c & 2 ? box.max.y : box.min.y, c & 4 ? box.max.z : box.min.z));
-  function fitCamera() {
+  const cornersOf = (b) => [0, 1, 2, 3, 4, 5, 6, 7].map((c) => new Vector3(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z));
+  // `b`: the box to frame (default: the whole motion's); the controls then turn about its centre.
+  function fitCamera(b = box) {
+    const centre = b.getCenter(new Vector3()), corners = cornersOf(b);
     const sees = (d) => {
       camera.position.copy(centre).addScaledVector(direction, d);
       camera.lookAt(centre);
@@ -494,8 +500,18 @@ function buildView(D) {
     while (!sees(far) && far < 1e6 * radius) far *= 2;
     for (let k = 0; k < 40; k++) { const mid = 0.5 * (near + far); if (sees(mid)) far = mid; else near = mid; }
     sees(far);
+    if (controls) controls.target.copy(centre);
   }
-  const controls = new OrbitControls(camera, renderer.domElement);
+  let controls = null;
+  // On a table the camera follows the body by default (a box of a few body sizes about O, moved
+  // with O; the mouse still turns and zooms about it); unticked, it frames the whole track.
+  const followBox = () => {
+    const here = originLerp(Math.min((state.time / T) * (n - 1), n - 1 - 1e-9), new Vector3());
+    return new Box3(new Vector3(here.x - 2.2 * size, here.y - 2.2 * size, 0), new Vector3(here.x + 2.2 * size, here.y + 2.2 * size, here.z + 2.2 * size));
+  };
+  const followFrom = new Vector3();
+  state.follow = !!onTable;
+  controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(centre);
   const top = new OrthographicCamera(-1, 1, 1, -1, size / 100, size * 100);
   top.up.set(0, 1, 0);
@@ -607,8 +623,19 @@ function buildView(D) {
     if (onTable) {
       originLerp(u, o);
       bodyGroup.matrix.setPosition(o);
+      if (state.follow) {  // the camera and the point it turns about move with O
+        const dx = o.x - followFrom.x, dy = o.y - followFrom.y;
+        camera.position.x += dx; camera.position.y += dy;
+        controls.target.x += dx; controls.target.y += dy;
+        camera.updateMatrixWorld();
+        followFrom.set(o.x, o.y, o.z);
+      }
       state.origin = o.toArray();
-      track.geometry.setDrawRange(0, i + 1);
+      // P's samples up to this time (binary search: the last one may be an event's, off the grid).
+      const tt = onTable.track.t;
+      let lo = 0, hi = tt.length;
+      while (lo < hi) { const mid = (lo + hi) >> 1; if (tt[mid] <= time) lo = mid + 1; else hi = mid; }
+      track.geometry.setDrawRange(0, Math.max(lo, 1));
     }
     bodyGroup.matrixWorldNeedsUpdate = true;
     tip(th, ph, v);
@@ -642,7 +669,16 @@ function buildView(D) {
   window.addEventListener("resize", () => { resize(); draw(); }, { signal });
   resize();
   fitCamera();
+  if (state.follow) { fitCamera(followBox()); originLerp(0, followFrom); }
   controls.update();
+  const followBox_ = $("follow");
+  if (followBox_ && onTable) followBox_.addEventListener("change", () => {
+    state.follow = followBox_.checked;
+    if (state.follow) { fitCamera(followBox()); originLerp(Math.min((state.time / T) * (n - 1), n - 1 - 1e-9), followFrom); }
+    else fitCamera();
+    controls.update();
+    draw();
+  }, { signal });
 
   function draw() {
     place(state.time);
@@ -651,6 +687,7 @@ function buildView(D) {
     renderer.setViewport(0, 0, w, h);
     renderer.clear();
     renderer.render(scene, camera);
+    if (onTable) return;  // on a table no inset: the track of P on the table shows the motion
     // The inset, bottom right: straight down on the tip, its loops and cusps at true scale.
     const s = Math.round(h * 0.42), x0 = w - s - 8, y0 = 8;
     renderer.setScissorTest(true);
