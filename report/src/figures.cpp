@@ -557,13 +557,17 @@ std::vector<Figure> plot_table_motion(const std::string& dir, const TableRun& ru
   double top = 0.0;
   for (double v : tilt) top = std::max(top, v * 180.0 / std::numbers::pi);
   const bool past_quarter = top > 80.0;
+  // The spin's axis from 0 (a small change of a fast spin reads as what it is).
+  double spin_lo = 0.0, spin_hi = 0.0;
+  for (double w : spin) spin_lo = std::min(spin_lo, w), spin_hi = std::max(spin_hi, w);
   const std::string tilt_plot = fmt::format(
       "set title 'The tilt on the table'\nset grid\nset key outside top center horizontal maxrows 1 samplen 2\n"
       "set xlabel 't (s)'\nset ylabel 'tilt from the upward vertical (degrees)'\nset y2label 'spin w.k (rad/s)'\n"
-      "set ytics nomirror{}\nset y2tics\nset xrange [0:{}]\nset yrange [0:{}]\n{}"
+      "set ytics nomirror{}\nset y2tics\nset xrange [0:{}]\nset yrange [0:{}]\nset y2range [{}:{}]\n{}"
       "plot '{}' using 1:2 axes x1y1 with lines lw 2 lc rgb '#2ca02c' title 'tilt', "
       "'' using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'spin w.k'{}\n",
-      past_quarter ? " 30" : "", end, past_quarter ? "180" : "*", arrows, data,
+      past_quarter ? " 30" : "", end, past_quarter ? "180" : "*", 1.05 * spin_lo, spin_hi > 0.0 ? 1.05 * spin_hi : 1.0,
+      arrows, data,
       past_quarter ? ", 90 axes x1y1 with lines dt 3 lw 1.5 lc rgb '#555555' title 'a quarter turn (90 degrees)'" : "");
   std::vector<Figure> out;
   out.push_back(render("tilt",
