@@ -20,7 +20,8 @@ Action add_report_command(CLI::App& app) {
   uses.table = true;  // SPEC section 16: a body on a table has its own report (write_table_report)
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"}, uses);
   auto t_end = std::make_shared<double>(0.0);
-  auto* t_end_option = cmd->add_option("--t-end", *t_end, "s, horizon of the motion (default: a few precession periods)");
+  auto* t_end_option = cmd->add_option("--t-end", *t_end, "s, horizon of the motion (default: a few precession periods; on a table twice the "
+                                                              "answer's event, else its horizon up to 10 s)");
   auto map_file = std::make_shared<std::string>();
   auto slices = std::make_shared<std::string>();
   cmd->add_option("--map", *map_file, "a sweep's output (CSV or HDF5) to draw: two keys whole, three as slices");
