@@ -50,7 +50,7 @@ Action add_report_command(CLI::App& app) {
           const std::string_view cell = list.substr(0, comma);
           const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
           if (error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v))
-            throw InvalidInput("--slice", fmt::format("'{}' is not a finite number (KEY=V1[,V2...])", cell));
+            throw InvalidInput("--slice", fmt::format("'{}' is not a finite number (KEY=V1[,V2...])", io::printable(cell)));
           map->values.push_back(v);
           if (comma == list.size()) break;
           list.remove_prefix(comma + 1);

@@ -1,9 +1,9 @@
 // libFuzzer target: stability maps and sweep journals read back (issue 30): io::read_map on
 // arbitrary bytes as a file (CSV, or HDF5 when they start with its signature), and
 // io::valid_journal_records on the same bytes as a resumed sweep's CSV rows and packed
-// records for a small grid. Allowed: heavytop::InvalidInput in one line from read_map; the
-// journal check never throws and never accepts more records than the grid has, nor a CSV row
-// that is not byte for byte what the sweep writes there.
+// records for a small grid. Allowed: heavytop::InvalidInput in one line from read_map, or a map
+// whose keys are all a sweep's; the journal check never throws and never accepts more records
+// than the grid has, nor a CSV row that is not byte for byte what the sweep writes there.
 #include <unistd.h>
 
 #include <cstddef>
@@ -32,7 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const heavytop::StabilityMap map = heavytop::io::read_map(path, "--map");
     std::size_t points = 1;
-    for (const auto& axis : map.axes) points *= axis.values.size();
+    for (const auto& axis : map.axes) {
+      points *= axis.values.size();
+      if (!heavytop::is_sweep_key(axis.key)) std::abort();  // a key is the report's label (issue 46)
+    }
     if (points != map.verdicts.size()) std::abort();
   } catch (const heavytop::InvalidInput& e) {
     if (e.rule().find_first_of("\n\r") != std::string::npos) std::abort();

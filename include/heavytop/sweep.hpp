@@ -37,6 +37,14 @@ inline constexpr std::size_t kMaxSweepAxes = 3;
 /// The most grid points a sweep may have (a 10^4 x 10^4 map; about 3 GB of CSV).
 inline constexpr std::size_t kMaxSweepPoints = 100'000'000;
 
+/// Whether `key` is one a sweep varies: a body key (A, B, C, mass, gravity, length), spin,
+/// spin_rpm, B/A or C/A. The one list: parse_sweep_axis() takes these, and a map file's
+/// axes must be among them (io::read_map), so no other text becomes a map's key.
+bool is_sweep_key(std::string_view key);
+
+/// Those keys as a rule's words: "A, B, C, mass, gravity, length, spin, spin_rpm, B/A, C/A".
+std::string sweep_keys_text();
+
 /// Parses "KEY=START:STOP:COUNT". Throws InvalidInput (key "vary") naming the rule broken.
 /// KEY "spin_rpm" gives the axis "spin" with START and STOP converted to rad/s (SPEC section 9).
 SweepAxis parse_sweep_axis(std::string_view text);

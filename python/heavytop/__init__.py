@@ -51,6 +51,11 @@ its arguments and their units):
     example_toy_top()            the built-in example's Body (kg m^2, kg, m)          [no --config]
     example_motion()             the built-in example's start (rad/s, rad)            [no --config]
 
+On a table (SPEC section 16): heavytop.Table(contact, friction=, friction_law=, slip_speed=) and
+the Body's tip_radius, rim_radius (m), given to simulate(..., table=) (a TableTrajectory: x, y,
+height, normal_force, slip_speed, spin, energy, jellett, vertical_momentum) and stability(...,
+table=) (a TableAnalysis: the table's answer, "turns over" ..., and its spinning states).
+
 In a notebook every result shows itself (the answer first), and trajectories, comparisons,
 maps and lifetimes have .to_dataframe() (pandas) and .plot() (matplotlib, returns the figure);
 examples/notebooks/tour.ipynb is a tour.
@@ -62,21 +67,23 @@ examples/notebooks/tour.ipynb is a tour.
     m.t, m.theta                                                               # s, rad
 """
 from . import _arguments  # noqa: F401 - one-line TypeErrors from _core, before anything takes its functions
-from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, __version__, example_motion, example_toy_top, grid_values
+from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, Table, __version__, example_motion, example_toy_top, grid_values
 from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
                    explore, load, precession, read_map, report, rpm, show, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov, NormalForm,
                       ModelComparison, ModelStability, NonlinearReference, Rotations, SimulationSummary, Stability,
                       StabilityMap, Trajectory, Wander, Answer, BodyReport, Precession, SteadyPrecession,
-                      Configuration, ReportView, MotionView)
+                      Configuration, ReportView, MotionView, SpinningState, TableStability, TableAnswer, TableAnalysis,
+                      TableSummary, TableTrajectory)
 
 __all__ = [
-    "__version__", "HAS_DERIVE", "MODELS", "Body", "InvalidInput", "example_toy_top", "example_motion",
+    "__version__", "HAS_DERIVE", "MODELS", "Body", "Table", "InvalidInput", "example_toy_top", "example_motion",
     "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
     "body_from_parts", "body_report", "precession", "rpm",
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov", "NormalForm",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",
     "load", "report", "show", "explore", "ReportView", "MotionView", "Configuration", "Precession", "SteadyPrecession", "BodyReport",
+    "SpinningState", "TableStability", "TableAnswer", "TableAnalysis", "TableSummary", "TableTrajectory",
 ]

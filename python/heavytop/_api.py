@@ -12,10 +12,10 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
-from ._core import Body
+from ._core import Body, Table
 from .results import (BodyReport, Comparison, Configuration, ReportView, DecayFit, Derivation, DerivationCheck, Lifetime,
                       Precession, Rotations, Stability, StabilityMap, Trajectory)
-from .results import MotionView, SimulationSummary
+from .results import MotionView, SimulationSummary, TableAnalysis, TableSummary, TableTrajectory
 
 __all__ = ["stability", "simulate", "compare", "sweep", "read_map", "derive", "derive_rotations", "derive_check", "body_from_parts",
            "body_report", "precession", "rpm", "lifetime", "fit_decay", "load", "report", "show", "explore"]
@@ -30,7 +30,7 @@ Sequence = Literal["phi-theta", "theta-phi"]
 
 def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None, theta0: float = 0.0, phi0: float = 0.0, theta_rate0: float = 0.0,
               phi_rate0: float = 0.0, horizon: float = 100.0, max_tilt: float = 1.0,
-              lifetime_horizon: Optional[float] = None) -> Stability:
+              lifetime_horizon: Optional[float] = None, table: Optional[Table] = None) -> "Stability | TableAnalysis":
     """Linear stability of the first-order, body-fixed and linearized models at spin w0, the
     real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders.
 
@@ -46,6 +46,8 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
         lifetime_horizon
                      s, > 0: a damped body's run (None: lifetime()'s, 10 times the time to the
                      critical spin)                                   [--lifetime-horizon]
+        table        Table: the body on a table (SPEC section 16; None or Table("pivot"): on its
+                     pivot), its shape where it touches Body's tip_radius, rim_radius (m)  [[table]]
 
     The motion's defaults are those of a configuration file without [motion] (SPEC section
     4): every key 0, spin included; the command line uses the same rule as soon as a body is
@@ -73,11 +75,24 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
     else None) and .wander (a Wander: .max_tilt rad or None, .method
     "closed form" | "integrated", .horizon s or None) are result["lyapunov"] and result["wander"].
 
-    Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number".
+    On a table (table=Table("sliding", friction=0.3), say) it returns a TableAnalysis instead:
+    `heavytop stability --format json` with [table]. .answer (a TableAnswer: .verdict "leaves the
+    table" | "falls" | "turns over" | "stays up" | "stays up for the horizon", .proven, .reason,
+    .text, and the table's .upright_at, .turns_over_at, .leaves_at (s or None), .track (m),
+    .final_tilt (rad), .final_spin (rad/s)) from the motion followed over `horizon`;
+    .table (a TableStability: .contact, .friction, .friction_law, .slip_speed, .tip_radius,
+    .rim_radius, and .upright, .inverted: SpinningState with .stable, .asymptotically,
+    .critical_spin (rad/s), .stable_spin_intervals, .eigenvalues (1/s), .growth_rate; None for a
+    rim); .models (the same body's linear models on a pivot). No .lyapunov, .wander there.
+
+    Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number",
+    "body.tip_radius: must be >= 0 (m)", "damping.axial: ..." (on a table).
     """
     data, words = _core.stability(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                   phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt,
-                                  lifetime_horizon=lifetime_horizon)
+                                  lifetime_horizon=lifetime_horizon, table=table)
+    if table is not None and table.on_table:
+        return TableAnalysis.from_json(data, words, body)
     return Stability.from_json(data, words)
 
 
@@ -87,7 +102,7 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float
              samples: int = 1001, method: Optional[LinearMethod] = None,
              integrator: Optional[IntegratorName] = None, rtol: Optional[float] = None,
              atol: Optional[float] = None, step: Optional[float] = None, order: Optional[Literal[2, 4]] = None,
-             max_steps: Optional[int] = None) -> Trajectory:
+             max_steps: Optional[int] = None, table: Optional[Table] = None) -> Trajectory:
     """The motion of one model: t, theta, phi and their rates (SI units), as NumPy arrays.
 
     The same computation as `heavytop simulate --format csv`, column for column (the
@@ -122,6 +137,9 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float
         order         splitting: 2 (Strang, the default) or 4 (Suzuki)            [--order]
         max_steps     nonlinear: the most steps a run may take before it fails
                       (default 1e8 adaptive, 1e9 splitting)
+        table         Table: the body on a table (SPEC section 16; None or Table("pivot"): on its
+                      pivot), its shape Body's tip_radius, rim_radius (m); the nonlinear
+                      model only, integrated by dop853 (integrator "auto" or "dop853") [[table]]
 
     Returns a Trajectory: float64 arrays of length `samples`, in the CSV's column order, as
     attributes and by name (result.theta is result["theta"]):
@@ -140,11 +158,20 @@ def simulate(body: Body, model: ModelName = "nonlinear", *, spin: Optional[float
     integer in [2, 100000000]", "rtol: must be a finite number in [1e-15, 1]". A run that
     fails (an integrator that cannot meet its tolerance, or exceeds max_steps) raises
     RuntimeError with the summary's message (the error's .summary holds the summary).
+
+    On a table it returns a TableTrajectory: SPEC's seven columns, then x, y (m: the contact
+    point P), height (m: O above the table), normal_force (N), slip_speed (m/s), spin (rad/s:
+    w.k), energy (J), jellett (kg m^3/s), vertical_momentum (kg m^2/s), as the CSV of `heavytop
+    simulate` with [table]; .summary a TableSummary (.end "completed" | "leaves the table",
+    .end_time s, .steps, .switches, the drifts: the JSON's "summary"). When the normal force
+    reaches 0 the columns end there. Painleve's paradox raises RuntimeError naming the time.
     """
-    columns, summary = _core.simulate(body, model, spin=_spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+    columns, summary, settings = _core.simulate(body, model, spin=_spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                       phi_rate0=phi_rate0, t_end=t_end, samples=samples, method=method,
                                       integrator=integrator, rtol=rtol, atol=atol, step=step, order=order,
-                                      max_steps=max_steps)
+                                      max_steps=max_steps, table=table)
+    if settings is not None:  # on a table (SPEC section 16)
+        return TableTrajectory(columns, TableSummary.from_json(summary), body, _spin(spin, spin_rpm), table, settings)
     summary = SimulationSummary.from_json(summary)
     if not summary.ok:
         error = RuntimeError(summary.message)
@@ -413,15 +440,29 @@ def load(path: "os.PathLike[str] | str") -> Configuration:
         cfg = heavytop.load("examples/toy-top.toml")
         heavytop.stability(cfg.body, **cfg.motion)
 
+    A [table] (SPEC section 16) is .table (a Table; Table("pivot") when absent), the body's
+    tip_radius and rim_radius (m) in .body:
+
+        cfg = heavytop.load("examples/tippe-top.toml")
+        heavytop.stability(cfg.body, **cfg.motion, table=cfg.table).answer.verdict   # "turns over"
+
     Bad files raise InvalidInput with the command line's message for `--config FILE`, the
-    file's key first ("motion.spni: unknown key in FILE", "body.B: is required in [body], ..."),
-    or "path: cannot read 'FILE': no such file". A general body (SPEC section 11) is refused
-    as every analysis but `simulate --model nonlinear` refuses it.
+    file's key first ("motion.spni: unknown key in FILE", "body.B: is required in [body], ...",
+    "table.friction: must be a finite number >= 0"), or "path: cannot read 'FILE': no such
+    file". A general body (SPEC section 11) is refused as every analysis but `simulate --model
+    nonlinear` refuses it; on a table a general or damped body is refused naming its key.
     """
     path = os.fspath(path)
-    body, motion, options, given, from_parts = _core.load_configuration(path)
+    body, motion, options, given, from_parts, table = _core.load_configuration(path)
     return Configuration(path=path, body=body, motion=dict(motion), options=dict(options), given=tuple(given),
-                         from_parts=bool(from_parts))
+                         from_parts=bool(from_parts), table=table)
+
+
+def _refuse_table(configuration: Configuration, command: str) -> None:
+    """As the command line refuses [table] for a command that is the pivot's (SPEC section 16)."""
+    if configuration.table.on_table:
+        raise _invalid("table.contact", f"{command}() is for a body on a pivot; on a table (contact = "
+                                        f"\"{configuration.table.contact}\") use simulate() or stability() with table=")
 
 
 def _spin(spin: Optional[float], spin_rpm: Optional[float]) -> float:
@@ -501,6 +542,7 @@ def report(body: "Body | Configuration", folder: "os.PathLike[str] | str", *, sp
     source = ""
     state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
     if isinstance(body, Configuration):
+        _refuse_table(body, "report")
         source, state, body = body.path, dict(body.motion), body.body
     elif body != _core.example_toy_top():
         source = "A body given in Python"  # the default title names the built-in example, which this is not
@@ -579,6 +621,7 @@ def explore(body: "Body | Configuration", path: "os.PathLike[str] | str", *, spi
     """
     state = {"spin": 0.0, "theta0": 0.0, "phi0": 0.0, "theta_rate0": 0.0, "phi_rate0": 0.0}
     if isinstance(body, Configuration):
+        _refuse_table(body, "explore")
         state, body = dict(body.motion), body.body
     given = {"theta0": theta0, "phi0": phi0, "theta_rate0": theta_rate0, "phi_rate0": phi_rate0}
     state.update({k: v for k, v in given.items() if v is not None})

@@ -72,6 +72,8 @@ def _fits(value, annotation):
         return hasattr(value, "__iter__") and not isinstance(value, (str, bytes, dict))
     if annotation.endswith("Body"):
         return isinstance(value, _core.Body)
+    if annotation.endswith("Table"):
+        return isinstance(value, _core.Table)
     return True
 
 
@@ -116,3 +118,4 @@ for _name in dir(_core):
     if type(_function).__name__ == "builtin_function_or_method":
         setattr(_core, _name, _wrap(_name, _function, _function.__doc__))
 _core.Body.__init__ = _wrap("Body", _core.Body.__init__, _core.Body.__init__.__doc__)
+_core.Table.__init__ = _wrap("Table", _core.Table.__init__, _core.Table.__init__.__doc__)

@@ -15,6 +15,8 @@ UNITS: Dict[str, str] = {
     "energy_drift": "J", "vertical_momentum_drift": "kg m^2/s", "axial_momentum_drift": "kg m^2/s",
     "dissipated_work": "J", "vertical_momentum_loss": "kg m^2/s", "axial_momentum_loss": "kg m^2/s",
     "motor_torque": "N m",
+    # on a table (SPEC section 16)
+    "x": "m", "y": "m", "height": "m", "normal_force": "N", "slip_speed": "m/s", "jellett": "kg m^3/s",
     # sweep's varied keys
     "A": "kg m^2", "B": "kg m^2", "C": "kg m^2", "mass": "kg", "length": "m", "gravity": "m/s^2",
     "spin": "rad/s", "B/A": "", "C/A": "",

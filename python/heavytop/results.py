@@ -20,7 +20,7 @@ from typing import Any, Dict, Iterator, Optional, Tuple
 import numpy as np
 import numpy.typing as npt
 
-from ._core import Body
+from ._core import Body, Table
 from . import _views
 
 __all__ = [
@@ -28,6 +28,7 @@ __all__ = [
     "Derivation", "Rotations", "CheckRow", "DerivationCheck", "SimulationSummary", "Trajectory",
     "StabilityMap", "FittedParameter", "DecayFit", "UNITS", "SteadyPrecession", "Precession", "BodyReport",
     "Configuration", "ReportView", "MotionView",
+    "SpinningState", "TableStability", "TableAnswer", "TableAnalysis", "TableSummary", "TableTrajectory",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -348,7 +349,8 @@ class Stability(JsonResult):
     @classmethod
     def from_json(cls, data: Dict[str, Any], answer_text: str) -> "Stability":
         b = data["body"]
-        body = Body(b["A"], b["B"], b["C"], mass=b["mass"], length=b["length"], gravity=b["gravity"])
+        body = Body(b["A"], b["B"], b["C"], mass=b["mass"], length=b["length"], gravity=b["gravity"],
+                    tip_radius=b.get("tip_radius", 0.0), rim_radius=b.get("rim_radius", 0.0))
         return cls(body=body, spin=data["spin"],
                    models={name: ModelStability.from_json(m) for name, m in data["models"].items()},
                    lyapunov=Lyapunov.from_json(data["lyapunov"]), wander=Wander.from_json(data["wander"]),
@@ -370,6 +372,151 @@ class Stability(JsonResult):
                        for n, v, c in self._rows())
         return (self.answer._repr_html_() + "<table><tr><th>model</th><th>verdict</th><th>critical spin</th></tr>"
                 + rows + "</table>")
+
+
+# ---- on a table (SPEC section 16) ----------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class SpinningState(JsonResult):
+    """The body spinning about its vertical axis standing on the table, linearised (SPEC section
+    16's "upright", tilt 0, or "inverted", tilt pi: the body on the other side of its sphere)."""
+
+    stable: bool
+    """Every eigenvalue has real part <= 0 (to rounding), none repeated on the imaginary axis."""
+    asymptotically: bool
+    """Every eigenvalue but the spin family's zeros has real part < 0: nearby motions come back."""
+    critical_spin: Optional[float]
+    """rad/s, the slowest spin above which it is stable; None when none is."""
+    stable_spin_intervals: Tuple[Tuple[float, Optional[float]], ...]
+    """rad/s, the spins where it is stable, as (lo, hi) pairs; hi None: and above."""
+    eigenvalues: Tuple[complex, ...]
+    """1/s, of the body-frame linearisation at the spin asked, sorted."""
+    growth_rate: float
+    """1/s, the largest real part of the eigenvalues."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "SpinningState":
+        return cls(stable=data["stable"], asymptotically=data["asymptotically"], critical_spin=data["critical_spin"],
+                   stable_spin_intervals=tuple((lo, hi) for lo, hi in data["stable_spin_intervals"]),
+                   eigenvalues=tuple(complex(re, im) for re, im in data["eigenvalues"]),
+                   growth_rate=data["growth_rate"], _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class TableStability(JsonResult):
+    """The table's block of `heavytop stability --format json` (result["table"]): the contact, its
+    law, the body's radii and the spinning states on it."""
+
+    contact: str
+    """"frictionless" | "rolling" | "sliding"."""
+    friction: Optional[float]
+    """mu (dimensionless), "sliding" only (else None)."""
+    friction_law: Optional[str]
+    """"viscous" | "coulomb", "sliding" only (else None)."""
+    slip_speed: Optional[float]
+    """m/s, the viscous law's reference speed, "sliding" only (else None)."""
+    tip_radius: float
+    """m, the radius of the sphere about O that touches the table."""
+    rim_radius: float
+    """m, the radius of the ring about the axis that touches it (0: none)."""
+    upright: Optional[SpinningState]
+    """Tilt 0; None for a rim (a disc with a vertical axis lies flat)."""
+    inverted: Optional[SpinningState]
+    """Tilt pi; None for a rim."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "TableStability":
+        def state(name: str) -> Optional[SpinningState]:
+            value = data[name]
+            return None if value is None else SpinningState.from_json(value)
+        return cls(contact=data["contact"], friction=data.get("friction"), friction_law=data.get("friction_law"),
+                   slip_speed=data.get("slip_speed"), tip_radius=data["tip_radius"], rim_radius=data["rim_radius"],
+                   upright=state("upright"), inverted=state("inverted"), _data=data)
+
+
+@dataclass(frozen=True, eq=False)
+class TableAnswer(Answer):
+    """The answer on a table (SPEC sections 14 and 16): result["answer"] of `heavytop stability
+    --format json` with [table]; ``text`` is the paragraph the command line's text opens with.
+    The verdict is "leaves the table" | "falls" | "turns over" | "stays up" (it rose: not
+    proven) | "stays up for the horizon"; the computed events are proven."""
+
+    upright_at: Optional[float] = None
+    """s, from then on the tilt stays below 0.01 rad (it rose and sleeps); None otherwise."""
+    turns_over_at: Optional[float] = None
+    """s, when the tilt passes pi/2; None if it does not."""
+    leaves_at: Optional[float] = None
+    """s, when the normal force reaches 0; None if it does not."""
+    track: float = 0.0
+    """m, the largest distance of the contact point P from where it started."""
+    final_tilt: float = 0.0
+    """rad, the tilt at the run's end."""
+    final_spin: float = 0.0
+    """rad/s, w.k at the run's end."""
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any], text: str) -> "TableAnswer":
+        t = data["table"]
+        return cls(verdict=data["verdict"], proven=data["proven"], reason=data["reason"], max_tilt=data["max_tilt"],
+                   falls_at=data["falls_at"], horizon=data["horizon"], min_spin=data["min_spin"],
+                   lifetime=data["lifetime"], text=text, _data=data, upright_at=t["upright_at"],
+                   turns_over_at=t["turns_over_at"], leaves_at=t["leaves_at"], track=t["track"],
+                   final_tilt=t["final_tilt"], final_spin=t["final_spin"])
+
+    def _repr_html_(self) -> str:
+        colour = ("#c62828" if self.verdict in ("falls", "leaves the table") else "#1a7f1a" if self.proven
+                  else "#f9a825")
+        return (f"<p style='border-left: 5px solid {colour}; padding: .3em .8em; font-size: 1.1em'>"
+                f"{html.escape(self.text)}</p>")
+
+
+@dataclass(frozen=True, eq=False)
+class TableAnalysis(JsonResult):
+    """stability(body, spin, table=...) on a table: `heavytop stability --format json` with
+    [table] (``to_dict()`` is json.loads of it). The pivot's "lyapunov" and "wander" are not
+    computed on a table."""
+
+    body: Body
+    """The body analysed (with its tip_radius and rim_radius)."""
+    spin: float
+    """rad/s, the spin w0 analysed."""
+    models: Dict[str, ModelStability]
+    """The linear models of the same body on a pivot (SPEC section 3), by name."""
+    table: TableStability
+    """The contact, its law, the radii and the spinning states on the table."""
+    answer: TableAnswer
+    """What the motion on the table does (SPEC section 16): the first thing repr() says."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any], answer_text: str, body: Body) -> "TableAnalysis":
+        return cls(body=body, spin=data["spin"],
+                   models={name: ModelStability.from_json(m) for name, m in data["models"].items()},
+                   table=TableStability.from_json(data["table"]), answer=TableAnswer.from_json(data["answer"], answer_text),
+                   _data=data)
+
+    def _rows(self) -> Tuple[Tuple[str, str, str], ...]:
+        rows = []
+        for name, state in (("upright", self.table.upright), ("inverted", self.table.inverted)):
+            if state is None:
+                rows.append((name, "none (a rim)", ""))
+            else:
+                verdict = ("stable, asymptotically" if state.asymptotically else "stable") if state.stable else "unstable"
+                rows.append((name, verdict, _optional(state.critical_spin, "rad/s")))
+        return tuple(rows)
+
+    def __repr__(self) -> str:
+        lines = [self.answer.text, "", f"{'on the table (' + self.table.contact + ')':<26} {'verdict':<24} critical spin"]
+        lines += [f"{name:<26} {verdict:<24} {critical}" for name, verdict, critical in self._rows()]
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        rows = "".join(f"<tr><td>{html.escape(n)}</td><td>{html.escape(v)}</td><td>{html.escape(c)}</td></tr>"
+                       for n, v, c in self._rows())
+        return (self.answer._repr_html_() + f"<table><tr><th>on the table ({html.escape(self.table.contact)})</th>"
+                "<th>verdict</th><th>critical spin</th></tr>" + rows + "</table>")
 
 
 # ---- compare ---------------------------------------------------------------------------------
@@ -638,6 +785,54 @@ class SimulationSummary(JsonResult):
         return cls(**data, _data=data)
 
 
+@dataclass(frozen=True, eq=False)
+class TableSummary(JsonResult):
+    """What simulate() did on a table: the "summary" of `heavytop simulate --format json` with
+    [table] (``to_dict()``), DOP853's work and the largest relative drifts of the quantities the
+    contact keeps (docs/table.md)."""
+
+    end: str
+    """"completed" (every sample computed) | "leaves the table" (the normal force reached 0 at
+    end_time: the trajectory ends there, its last row at that time)."""
+    end_time: float
+    """s, the last sample's time."""
+    steps: int
+    """Accepted steps."""
+    rhs_evaluations: int
+    """Evaluations of the equations of motion."""
+    switches: int
+    """Coulomb's law: the contact's switches between sticking and slipping (0 otherwise)."""
+    max_relative_energy_drift: float
+    """The largest |E(t) - E(0)| over the steps, relative (the energy falls while it slides)."""
+    max_relative_jellett_drift: float
+    """The same for Jellett's integral (kept on a sphere by any contact)."""
+    max_relative_vertical_momentum_drift: float
+    """The same for the vertical angular momentum about G."""
+    _data: Dict[str, Any] = field(repr=False)
+
+    @property
+    def model(self) -> str:
+        """"nonlinear": the only model on a table."""
+        return "nonlinear"
+
+    @property
+    def ok(self) -> bool:
+        """True: a run that fails raises instead (leaving the table is an end, not a failure)."""
+        return True
+
+    @property
+    def report(self) -> str:
+        """One line for people: how it ended and the work."""
+        return (f"on the table, Dormand-Prince 8(5,3): {self.end} at t = {self.end_time:.9g} s, {self.steps} steps, "
+                f"{self.rhs_evaluations} evaluations" + (f", {self.switches} switches" if self.switches else ""))
+
+    def __str__(self) -> str:
+        return self.report
+
+    @classmethod
+    def from_json(cls, data: Dict[str, Any]) -> "TableSummary":
+        return cls(**data, _data=data)
+
 # ---- fit_decay -------------------------------------------------------------------------------
 
 @dataclass(frozen=True, eq=False)
@@ -820,6 +1015,9 @@ class Trajectory(_Columns):
             raise ValueError("view: this trajectory has no body (simulate() makes one that has)")
         return MotionView(self, height)
 
+    def _view_html(self) -> str:
+        return self.view()._repr_html_()
+
     @property
     def columns(self) -> Tuple[str, ...]:
         """The column names in the CSV's order: t, theta, phi, theta_rate, phi_rate, tilt,
@@ -872,10 +1070,66 @@ class Trajectory(_Columns):
                 rows.append(["…"] * len(columns))
             rows.append([f"{self._columns[c][k]:.6g}" for c in columns])
         header = [_views.label(c) for c in columns]
-        view = self.view()._repr_html_() if self._body is not None and len(t) >= 2 else ""
+        view = self._view_html() if self._body is not None and len(t) >= 2 else ""
         return (head + view + _views.html_table(header, rows)
                 + f"<p style='font-size: .85em'>{html.escape(self._summary.report)}</p>")
 
+
+class TableTrajectory(Trajectory):
+    """The motion of the body on a table (SPEC section 16), column by column as `heavytop
+    simulate --format csv` with [table] prints it: SPEC's seven columns, then x, y (m: the
+    contact point P on the table), height (m: O above the table), normal_force (N), slip_speed
+    (m/s), spin (rad/s: w.k), energy (J), jellett (kg m^3/s: -L_G.(P - G)), vertical_momentum
+    (kg m^2/s: L_G.e_zeta). ``summary`` is a TableSummary; ``table`` the Table; ``settings`` the
+    JSON's "table" object (the contact, its law, the radii). When the body leaves the table the
+    columns end at that time (summary.end == "leaves the table")."""
+
+    __slots__ = ("_table", "_settings")
+
+    def __init__(self, columns: Dict[str, FloatArray], summary: "TableSummary", body: Optional[Body] = None,
+                 spin: float = 0.0, table: Optional[Table] = None, settings: Optional[Dict[str, Any]] = None) -> None:
+        super().__init__(columns, summary, body, spin)  # type: ignore[arg-type]
+        self._table = table
+        self._settings = dict(settings or {})
+
+    x = _column("x", "m, the contact point P's xi on the table (P starts at the origin)")
+    y = _column("y", "m, the contact point P's eta on the table")
+    height = _column("height", "m, O above the table: tip_radius + rim_radius sin(tilt)")
+    normal_force = _column("normal_force", "N, the table's normal force at P")
+    slip_speed = _column("slip_speed", "m/s, the speed of the body's material point at P (0 when rolling)")
+    spin = _column("spin", "rad/s, w.k: the spin about the body's axis")
+    jellett = _column("jellett", "kg m^3/s, Jellett's integral -L_G.(P - G)")
+    energy = _column("energy", "J, the energy (falls while the contact slides)")
+    vertical_momentum = _column("vertical_momentum", "kg m^2/s, L_G.e_zeta: the vertical angular momentum about G")
+
+    @property
+    def summary(self) -> "TableSummary":  # type: ignore[override]
+        """What DOP853 did, how the run ended and the drifts (a TableSummary)."""
+        return self._summary  # type: ignore[return-value]
+
+    @property
+    def table(self) -> Optional[Table]:
+        """The Table the body ran on."""
+        return self._table
+
+    @property
+    def settings(self) -> Dict[str, Any]:
+        """The JSON's "table" object: {"contact", "friction", "friction_law", "slip_speed" (sliding
+        only), "tip_radius", "rim_radius"} (m)."""
+        return copy.deepcopy(self._settings)
+
+    def view(self, height: int = 720) -> "MotionView":
+        """Not yet on a table (docs/table.md: the report's 3D view is the pivot's); raises ValueError.
+        plot() draws the motion (e.g. plot(("tilt", "spin")) or the track: x against y)."""
+        raise ValueError("view: the 3D view is the pivot's; a body on a table is not drawn yet (docs/table.md); "
+                         "plot() draws its columns")
+
+    def _view_html(self) -> str:
+        return ""
+
+    def __repr__(self) -> str:
+        return (f"TableTrajectory(contact={self._settings.get('contact')!r}, samples={len(self._columns['t'])}, "
+                f"columns={self.columns!r}, summary={self._summary.report!r})")
 
 class MotionView:
     """One trajectory in the report's 3D view, as one self-contained HTML document (the report's
@@ -1182,6 +1436,9 @@ class Configuration:
     """The body and motion keys the file gives ("body.A", "motion.spin", ...)."""
     from_parts: bool
     """True when [[body.part]] describe the body."""
+    table: Table = field(default_factory=Table)
+    """[table] (SPEC section 16): the pivot (Table()) when absent. simulate(cfg.body, **cfg.motion,
+    table=cfg.table) and stability(cfg.body, **cfg.motion, table=cfg.table) take it."""
 
     def section(self, name: str) -> Dict[str, Any]:
         """The options of section `name` by key: cfg.section("simulate") == {"t_end": 10.0, ...}."""
@@ -1190,6 +1447,8 @@ class Configuration:
 
     def _repr_html_(self) -> str:
         rows = [("body", repr(self.body))] + [(f"motion.{k}", _views.fmt(v)) for k, v in self.motion.items()]
+        if self.table.on_table:
+            rows.append(("table", repr(self.table)))
         rows += [(k, _views.fmt(v)) for k, v in self.options.items()]
         return _views.html_table(("key", "value"), rows, caption=self.path)
 

@@ -13,6 +13,7 @@
 #include "heavytop/io/formats.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
+#include "heavytop/table.hpp"
 #include "interrupt.hpp"
 
 namespace heavytop::python {
@@ -22,11 +23,15 @@ using namespace pybind11::literals;
 namespace {
 
 /// (json.loads of `stability --format json`, the answer's paragraph in words): the words are
-/// io's, the same the command line's text opens with.
+/// io's, the same the command line's text opens with. On a table (SPEC section 16) those of
+/// `stability --config` with [table] (stability_on_table).
 py::tuple stability(const Body& body, double spin, double theta0, double phi0, double theta_rate0,
-                    double phi_rate0, double horizon, double max_tilt, std::optional<double> lifetime_horizon) {
+                    double phi_rate0, double horizon, double max_tilt, std::optional<double> lifetime_horizon,
+                    const std::optional<Table>& table) {
   validate_ordinary(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
+  const bool on_table = table && table->on_table();
+  if (on_table) validate(*table, body);  // as the command line checks [table] with the body, first
   // As `heavytop stability` checks --horizon and --lifetime-horizon.
   if (!(std::isfinite(horizon) && horizon > 0.0)) throw InvalidInput("horizon", "must be a finite number > 0");
   AnswerOptions options;
@@ -39,6 +44,7 @@ py::tuple stability(const Body& body, double spin, double theta0, double phi0, d
     const auto colon = why.find(": ");
     throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
   }
+  if (on_table) return stability_on_table(body, *table, state, options);  // SPEC section 16
   std::string json, words;
   without_gil([&] {
     const TopAnalysis analysis = analyse_top(body, state, options);
@@ -85,7 +91,7 @@ void bind_analyses(py::module_& m) {
         "atol"_a = py::none(), "max_steps"_a = py::none());
   m.def("stability", &stability, docs::kCoreStability, "body"_a, "spin"_a, py::kw_only(), "theta0"_a = 0.0,
         "phi0"_a = 0.0, "theta_rate0"_a = 0.0, "phi_rate0"_a = 0.0, "horizon"_a = 100.0, "max_tilt"_a = 1.0,
-        "lifetime_horizon"_a = py::none());
+        "lifetime_horizon"_a = py::none(), "table"_a = py::none());
   m.def("compare", &compare, docs::kCoreCompare, "body"_a, py::kw_only(), "spin"_a, "theta0"_a, "phi0"_a,
         "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "samples"_a, "rtol"_a = py::none(), "atol"_a = py::none());
 }

@@ -9,8 +9,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "heavytop/answer.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/state.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::python {
 
@@ -39,6 +41,17 @@ void require_positive(const char* key, double value);
 /// `value` must be in [lo, hi] (key `key`: a keyword argument's name).
 void require_count(const char* key, long long value, long long lo, long long hi);
 
+/// The body on `table` (SPEC section 16; table.on_table(), validate(table, body) done) as
+/// `heavytop simulate` runs it once its options are resolved: `model` "nonlinear" and
+/// `integrator` auto or dop853 (InvalidInput otherwise, keys "table.contact", "integrator").
+/// Returns (columns, the JSON's "summary", the JSON's "table").
+py::tuple simulate_table(const Body& body, const Table& table, const InitialState& state, const std::string& model,
+                         const std::optional<std::string>& integrator, double t_end, std::size_t samples,
+                         const Tolerances& tolerances);
+/// (json.loads of `stability --format json` on `table`, table_answer_text's words).
+py::tuple stability_on_table(const Body& body, const Table& table, const InitialState& state,
+                             const AnswerOptions& options);
+
 // One per topic: each adds its classes and functions to the module.
 void bind_errors(py::module_& m);
 void bind_body(py::module_& m);
@@ -50,5 +63,6 @@ void bind_parts(py::module_& m);
 void bind_fit_decay(py::module_& m);
 void bind_config(py::module_& m);
 void bind_report(py::module_& m);
+void bind_table(py::module_& m);
 
 }  // namespace heavytop::python

@@ -18,11 +18,12 @@ namespace {
 
 Body make_body(double A, double B, double C, double mass, double length, double gravity, double transverse_damping,
                double axial_damping, double friction, bool driven, double offset_x, double offset_y, double Ixy,
-               double Ixz, double Iyz) {
+               double Ixz, double Iyz, double tip_radius, double rim_radius) {
   const Body body{.A = A, .B = B, .C = C, .mass = mass, .gravity = gravity, .length = length,
                   .damping = {.transverse = transverse_damping, .axial = axial_damping, .friction = friction,
                               .driven = driven},
-                  .general = {.Ixy = Ixy, .Ixz = Ixz, .Iyz = Iyz, .offset_x = offset_x, .offset_y = offset_y}};
+                  .general = {.Ixy = Ixy, .Ixz = Ixz, .Iyz = Iyz, .offset_x = offset_x, .offset_y = offset_y},
+                  .tip_radius = tip_radius, .rim_radius = rim_radius};
   validate(body);
   return body;
 }
@@ -30,7 +31,8 @@ Body make_body(double A, double B, double C, double mass, double length, double 
 py::tuple state_of(const Body& b) {
   const GeneralInertia& g = b.general;
   return py::make_tuple(b.A, b.B, b.C, b.mass, b.length, b.gravity, b.damping.transverse, b.damping.axial,
-                        b.damping.friction, b.damping.driven, g.offset_x, g.offset_y, g.Ixy, g.Ixz, g.Iyz);
+                        b.damping.friction, b.damping.driven, g.offset_x, g.offset_y, g.Ixy, g.Ixz, g.Iyz,
+                        b.tip_radius, b.rim_radius);
 }
 
 // The general body's keyword arguments (SPEC section 11), after those of docs::kBodyInit.
@@ -41,7 +43,11 @@ const std::string& init_doc() {
       "Ixy, Ixz, Iyz: kg m^2 (default 0), the products of inertia about O in the body axes (the tensor\n"
       "        [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]], positive definite)\n"
       "A body with any of these nonzero is SPEC section 11's general body: simulate(body, \"nonlinear\")\n"
-      "integrates it (integrator \"auto\" or \"dopri5\"); every other analysis refuses it (InvalidInput).";
+      "integrates it (integrator \"auto\" or \"dopri5\"); every other analysis refuses it (InvalidInput).\n"
+      "tip_radius: m (>= 0, default 0), the radius of the sphere centred at O with which the body touches a table\n"
+      "        (SPEC section 16; 0: a sharp point)\n"
+      "rim_radius: m (>= 0, default 0), or the radius of a ring about the axis through O, thickened by tip_radius\n"
+      "        (a coin, a disc). Both matter only on a table (simulate(..., table=Table(...))).";
   return doc;
 }
 
@@ -51,7 +57,8 @@ void bind_body(py::module_& m) {
   py::class_<Body>(m, "Body", docs::kBody)
       .def(py::init(&make_body), "A"_a, "B"_a, "C"_a, "mass"_a, "length"_a, "gravity"_a = 9.81, py::kw_only(),
            "transverse_damping"_a = 0.0, "axial_damping"_a = 0.0, "friction"_a = 0.0, "driven"_a = false,
-           "offset_x"_a = 0.0, "offset_y"_a = 0.0, "Ixy"_a = 0.0, "Ixz"_a = 0.0, "Iyz"_a = 0.0, init_doc().c_str())
+           "offset_x"_a = 0.0, "offset_y"_a = 0.0, "Ixy"_a = 0.0, "Ixz"_a = 0.0, "Iyz"_a = 0.0, "tip_radius"_a = 0.0,
+           "rim_radius"_a = 0.0, init_doc().c_str())
       .def_readonly("A", &Body::A, "kg m^2, moment of inertia about body x through O")
       .def_readonly("B", &Body::B, "kg m^2, moment of inertia about body y through O")
       .def_readonly("C", &Body::C, "kg m^2, moment of inertia about the spin axis z through O")
@@ -77,11 +84,17 @@ void bind_body(py::module_& m) {
                              "kg m^2, the product of inertia integral of x z dm about O (SPEC section 11)")
       .def_property_readonly("Iyz", [](const Body& b) { return b.general.Iyz; },
                              "kg m^2, the product of inertia integral of y z dm about O (SPEC section 11)")
+      .def_readonly("tip_radius", &Body::tip_radius,
+                    "m, the radius of the sphere centred at O that touches a table (SPEC section 16; 0: a sharp point)")
+      .def_readonly("rim_radius", &Body::rim_radius,
+                    "m, the radius of the ring about the axis through O that touches a table (SPEC section 16; 0: none)")
       .def_property_readonly("general", [](const Body& b) { return is_general(b); },
                              "True for SPEC section 11's general body (an offset or a product of inertia nonzero)")
       .def("to_dict", [](const Body& b) {
              py::dict d("A"_a = b.A, "B"_a = b.B, "C"_a = b.C, "mass"_a = b.mass, "gravity"_a = b.gravity,
                         "length"_a = b.length);
+             if (b.tip_radius != 0.0) d["tip_radius"] = b.tip_radius;  // as the JSON's "body", when given
+             if (b.rim_radius != 0.0) d["rim_radius"] = b.rim_radius;
              if (is_general(b)) {
                d["offset_x"] = b.general.offset_x;
                d["offset_y"] = b.general.offset_y;
@@ -90,8 +103,9 @@ void bind_body(py::module_& m) {
                d["Iyz"] = b.general.Iyz;
              }
              return d;
-           }, "The body as the JSON outputs' \"body\" object: {A, B, C, mass, gravity, length}, and for a general\n"
-              "body (SPEC section 11) offset_x, offset_y, Ixy, Ixz, Iyz.")
+           }, "The body as the JSON outputs' \"body\" object: {A, B, C, mass, gravity, length}, tip_radius and\n"
+              "rim_radius when not 0 (SPEC section 16), and for a general body (SPEC section 11) offset_x, offset_y,\n"
+              "Ixy, Ixz, Iyz.")
       .def("__eq__", [](const Body& a, const Body& b) {
              return state_of(a).equal(state_of(b));
            }, py::is_operator())
@@ -106,16 +120,18 @@ void bind_body(py::module_& m) {
              for (const auto& [name, value] : {std::pair{"offset_x", g.offset_x}, std::pair{"offset_y", g.offset_y},
                                                std::pair{"Ixy", g.Ixy}, std::pair{"Ixz", g.Ixz}, std::pair{"Iyz", g.Iyz}})
                if (value != 0.0) damping += fmt::format(", {}={}", name, value);
+             for (const auto& [name, value] : {std::pair{"tip_radius", b.tip_radius}, std::pair{"rim_radius", b.rim_radius}})
+               if (value != 0.0) damping += fmt::format(", {}={}", name, value);
              return fmt::format("heavytop.Body(A={}, B={}, C={}, mass={}, length={}, gravity={}{})", b.A, b.B, b.C,
                                 b.mass, b.length, b.gravity, damping);
            })
       .def(py::pickle(&state_of, [](const py::tuple& t) {
-        // 10 items: a pickle made before the general body's terms (all 0).
+        // 10 items: a pickle made before the general body's terms (all 0); 15: before the radii (0).
         const auto general = [&](std::size_t i) { return t.size() > i ? t[i].cast<double>() : 0.0; };
         return make_body(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>(),
                          t[4].cast<double>(), t[5].cast<double>(), t[6].cast<double>(), t[7].cast<double>(),
                          t[8].cast<double>(), t[9].cast<bool>(), general(10), general(11), general(12), general(13),
-                         general(14));
+                         general(14), general(15), general(16));
       }));
 
   m.def("example_toy_top", &example_toy_top, docs::kExampleToyTop);

@@ -19,18 +19,13 @@ using namespace pybind11::literals;
 
 namespace {
 
-// (Body, {motion key: value}, {"section.key": value}, [given keys], parts?) of the file `path`;
+// (Body, {motion key: value}, {"section.key": value}, [given keys], parts?, Table) of the file `path`;
 // the body and the motion checked as `heavytop simulate --config` checks them: a general body
 // (SPEC section 11) is kept (the analyses that cannot take it refuse it).
 py::tuple load_configuration(const std::string& path) {
   const io::Configuration config = io::read_configuration(path, "path");
-  // [table] checked as the command line checks it; the package's analyses are the pivot's, so a
-  // body on a table is refused rather than analysed as if it stood on a pivot.
-  if (const Table table = io::table_of(config); table.on_table())
-    throw InvalidInput("table.contact", fmt::format("the Python package analyses a body on a pivot; on a table "
-                                                    "(contact = \"{}\") use `heavytop simulate` or `heavytop "
-                                                    "stability --config` (docs/table.md)",
-                                                    name(table.contact)));
+  // [table] checked as the command line checks it (SPEC section 16): the pivot when absent.
+  const Table table = io::table_of(config);
   Body body = config.body;
   if (config.parts.empty()) {
     for (const std::string& key : io::required_body_keys())
@@ -57,6 +52,7 @@ py::tuple load_configuration(const std::string& path) {
   }
   validate(body);
   validate(config.motion);
+  if (table.on_table()) validate(table, body);  // a general or damped body on a table: refused naming its key
   const InitialState& s = config.motion;
   py::dict motion("spin"_a = s.spin, "theta0"_a = s.theta0, "phi0"_a = s.phi0, "theta_rate0"_a = s.theta_rate0,
                   "phi_rate0"_a = s.phi_rate0);
@@ -65,14 +61,14 @@ py::tuple load_configuration(const std::string& path) {
     std::visit([&](const auto& v) { settings[py::str(key)] = py::cast(v); }, value);
   py::list given;
   for (const std::string& key : config.given) given.append(key);
-  return py::make_tuple(body, motion, settings, given, !config.parts.empty());
+  return py::make_tuple(body, motion, settings, given, !config.parts.empty(), table);
 }
 
 }  // namespace
 
 void bind_config(py::module_& m) {
   m.def("load_configuration", &load_configuration,
-        "(Body, motion, settings, given keys, made of parts) of a configuration file", "path"_a);
+        "(Body, motion, settings, given keys, made of parts, Table) of a configuration file", "path"_a);
 }
 
 }  // namespace heavytop::python

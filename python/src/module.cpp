@@ -38,6 +38,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = HEAVYTOP_VERSION;
   bind_errors(m);
   bind_body(m);
+  bind_table(m);
   bind_simulate(m);
   bind_analyses(m);
   bind_sweep(m);

@@ -11,6 +11,7 @@
 #include "docs.hpp"
 #include "heavytop/lagrange_exact.hpp"
 #include "heavytop/simulate.hpp"
+#include "heavytop/table.hpp"
 #include "interrupt.hpp"
 
 namespace heavytop::python {
@@ -33,14 +34,18 @@ py::dict summary_dict(const SimulationSummary& s) {
 
 /// The core's resolve() of the request (the rules `heavytop simulate` applies, in its order),
 /// the keyword arguments' names as keys; then the core's simulate() (which checks rtol, atol,
-/// step, order and max_steps). Returns (columns, summary): a failed run is reported in the summary.
+/// step, order and max_steps). Returns (columns, summary, None): a failed run is reported in the
+/// summary. On a table (SPEC section 16) the same rules, then the table's (simulate_table):
+/// (columns, the JSON's "summary", the JSON's "table").
 py::tuple simulate(const Body& body, const std::string& model_name, double spin, double theta0, double phi0,
                    double theta_rate0, double phi_rate0, double t_end, long long samples,
                    const std::optional<std::string>& method, const std::optional<std::string>& integrator,
                    std::optional<double> rtol, std::optional<double> atol, std::optional<double> step,
-                   std::optional<int> order, std::optional<long long> max_steps) {
+                   std::optional<int> order, std::optional<long long> max_steps, const std::optional<Table>& table) {
   validate(body);
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
+  const bool on_table = table && table->on_table();
+  if (on_table) validate(*table, body);  // as the command line checks [table] with the body, first
   // The core's rules (resolve()); here only its keys spelled as keyword arguments and the
   // general body's refusal in the command line's words.
   SimulateRequest request;
@@ -67,6 +72,9 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
                               "auto, taylor, dop853, dopri5 (adaptive) or splitting"});
   }
   const std::optional<Model> model = resolved.model;
+  if (on_table)
+    return simulate_table(body, *table, state, model_name, integrator, resolved.t_end, resolved.samples,
+                          resolved.options.adaptive);
   Simulation run = without_gil([&] {
     return heavytop::simulate(*model, body, state, sample_times(resolved.t_end, resolved.samples), resolved.options,
                               poll_signals());
@@ -75,7 +83,7 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
   const auto names = tr.column_names();
   py::dict columns;
   for (std::size_t c = 0; c < names.size(); ++c) columns[py::str(names[c])] = to_numpy(std::move(tr.column(c)));
-  return py::make_tuple(columns, summary_dict(run.summary));
+  return py::make_tuple(columns, summary_dict(run.summary), py::none());
 }
 
 }  // namespace
@@ -84,7 +92,7 @@ void bind_simulate(py::module_& m) {
   m.def("simulate", &simulate, docs::kCoreSimulate, "body"_a, "model"_a, py::kw_only(), "spin"_a, "theta0"_a,
         "phi0"_a, "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "samples"_a, "method"_a = py::none(),
         "integrator"_a = py::none(), "rtol"_a = py::none(), "atol"_a = py::none(), "step"_a = py::none(),
-        "order"_a = py::none(), "max_steps"_a = py::none());
+        "order"_a = py::none(), "max_steps"_a = py::none(), "table"_a = py::none());
   py::list models;
   for (Model model : kModels) models.append(std::string(name(model)));
   m.attr("MODELS") = py::tuple(models);

@@ -117,9 +117,11 @@ def test_body_report_html_has_units_and_parts():
     assert html.count("<td>body.part[") == 2
 
 
-def test_a_body_on_a_table_is_refused_not_put_on_a_pivot():
-    # The package's analyses are the pivot's (docs/table.md): a [table] file is not silently
-    # analysed as if O were fixed.
-    with pytest.raises(heavytop.InvalidInput) as e:
-        heavytop.load(os.path.join(EXAMPLES, "tippe-top.toml"))
-    assert str(e.value).startswith("table.contact: the Python package analyses a body on a pivot")
+def test_a_body_on_a_table_is_loaded_with_its_table():
+    # [table] (SPEC section 16) is read, not refused: the body with its radii and the Table, which
+    # stability() and simulate() take (test_table.py holds them to the command line).
+    config = heavytop.load(os.path.join(EXAMPLES, "tippe-top.toml"))
+    assert config.table == heavytop.Table("sliding", friction=0.3, friction_law="viscous")
+    assert (config.body.tip_radius, config.body.rim_radius) == (0.015, 0.0)
+    expected = cli_json("stability", "--config", os.path.join(EXAMPLES, "tippe-top.toml"))
+    assert heavytop.stability(config.body, **config.motion, table=config.table) == expected

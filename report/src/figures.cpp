@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "heavytop/frames.hpp"
+#include "heavytop/io/config.hpp"
 #include "heavytop/io/output.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
@@ -46,7 +47,7 @@ const std::map<std::string, Style> kStyles = {
 
 std::string line_style(const std::string& model) {
   const Style& s = kStyles.at(model);
-  return fmt::format("lc rgb '{}' dt {} lw {}", s.color, s.dash, s.width);
+  return fmt::format("lc rgb {} dt {} lw {}", gnuplot_string(s.color), s.dash, s.width);
 }
 
 /// The folder a figure is drawn in (data, script, log and the PNG and SVG it makes). gnuplot
@@ -104,10 +105,11 @@ Figure render(const std::string& name, const std::string& caption, const std::st
   const std::string script = name + ".gp";
   std::ofstream(scratch.path(script)) << fmt::format(
       "set terminal pngcairo size {w},{h} enhanced font 'DejaVu Sans,18' linewidth 1.5\n"
-      "set output '{name}.png'\nload '{body}'\nunset output\n"
+      "set output {png}\nload {body}\nunset output\n"
       "set terminal svg size {w},{h} enhanced font 'DejaVu Sans,18' linewidth 1.5 background rgb 'white'\n"
-      "set output '{name}.svg'\nload '{body}'\nunset output\n",
-      fmt::arg("w", width), fmt::arg("h", height), fmt::arg("name", name), fmt::arg("body", body_file));
+      "set output {svg}\nload {body}\nunset output\n",
+      fmt::arg("w", width), fmt::arg("h", height), fmt::arg("png", gnuplot_string(name + ".png")),
+      fmt::arg("svg", gnuplot_string(name + ".svg")), fmt::arg("body", gnuplot_string(body_file)));
   run_gnuplot(scratch, script, name + ".log");
   return {name, caption};
 }
@@ -175,16 +177,31 @@ std::string plot_list(const std::vector<SeriesFile>& files, const std::string& c
     if (skip_truth && f.model == "nonlinear") continue;
     const std::string title = f.leaves_at ? fmt::format("{} (leaves the chart at {:.3g} s)", f.model, *f.leaves_at)
                                           : f.model == "nonlinear" ? std::string("nonlinear (truth)") : f.model;
-    list += fmt::format("{}'{}' using {} with lines {} title '{}'", list.empty() ? "" : ", \\\n  ", f.path, columns,
-                        line_style(f.model), title);
+    list += fmt::format("{}{} using {} with lines {} title {}", list.empty() ? "" : ", \\\n  ", gnuplot_string(f.path),
+                        columns, line_style(f.model), gnuplot_string(title));
     if (f.leaves_at)
-      list += fmt::format(", \\\n  '{}.exit' using {} with points pt 2 ps 2.5 lw 3 lc rgb '{}' notitle", f.model, columns,
-                          kStyles.at(f.model).color);
+      list += fmt::format(", \\\n  {} using {} with points pt 2 ps 2.5 lw 3 lc rgb {} notitle",
+                          gnuplot_string(f.model + ".exit"), columns, gnuplot_string(kStyles.at(f.model).color));
   }
   return list + "\n";
 }
 
 }  // namespace
+
+std::string gnuplot_string(std::string_view text) {
+  std::string out = "\"";
+  bool after_octal = false;
+  for (const char c : io::printable(text)) {
+    // gnuplot reads every octal digit after a backslash into one escape: a digit that follows
+    // an octal escape is one too.
+    const bool octal = c == '`' || (after_octal && c >= '0' && c <= '7');
+    if (octal) out += fmt::format("\\{:03o}", static_cast<unsigned char>(c));
+    else if (c == '"' || c == '\\') out += {'\\', c};
+    else out += c;
+    after_octal = octal;
+  }
+  return out + "\"";
+}
 
 std::pair<const char*, const char*> diagram_words(const Body& body) {
   return body.length < 0.0 ? std::pair{"axis stays near the vertical", "axis swings out"} : std::pair{"stays up", "falls"};
@@ -242,20 +259,24 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   std::string path = fmt::format(
       "set title 'Path of the axis tip seen from above: nutation loops and cusps'\nset grid\nset size ratio -1\n"
       "{0}set xrange [{1}:{2}]\nset yrange [{1}:{2}]\nset format x '%g'\nset format y '%g'\n"
-      "set xlabel 'xi: k_{{xi}} ({3}), about theta'\nset ylabel 'eta: k_{{eta}} ({3}), about -phi'\nplot ",
-      key, -std::min(r, 1.05) * unit.scale, std::min(r, 1.05) * unit.scale, unit.name);  // |k_xi|, |k_eta| <= 1
+      "set xlabel {3}\nset ylabel {4}\nplot ",
+      key, -std::min(r, 1.05) * unit.scale, std::min(r, 1.05) * unit.scale,  // |k_xi|, |k_eta| <= 1
+      gnuplot_string(fmt::format("xi: k_{{xi}} ({}), about theta", unit.name)),
+      gnuplot_string(fmt::format("eta: k_{{eta}} ({}), about -phi", unit.name)));
   path += plot_list(files, fmt::format("($5*{0}):($6*{0})", unit.scale));
   figures.push_back(render("axis-path", "The tip of the axis seen from above (xi to the right, eta up; to first order "
                            "(theta, -phi)), every model: the nutation loops and cusps as the precession carries them round.",
                            path, scratch, 1500, 1000));
 
   std::string angles = fmt::format(
-      "set multiplot layout 2,1 title \"The paper's angles theta, phi: every model from the same start\"\n"
-      "set grid\n{0}set yrange [{1}:{2}]\nset format y '%g'\nset ylabel 'theta ({3})'\nunset xlabel\n",
-      key, -r * unit.scale, r * unit.scale, unit.name);
+      "set multiplot layout 2,1 title {3}\n"
+      "set grid\n{0}set yrange [{1}:{2}]\nset format y '%g'\nset ylabel {4}\nunset xlabel\n",
+      key, -r * unit.scale, r * unit.scale,
+      gnuplot_string("The paper's angles theta, phi: every model from the same start"),
+      gnuplot_string(fmt::format("theta ({})", unit.name)));
   const std::string theta = fmt::format("1:($2*{})", unit.scale), phi = fmt::format("1:($3*{})", unit.scale);
   angles += "plot " + plot_list(files, theta);
-  angles += fmt::format("set ylabel 'phi ({})'\nset xlabel 't (s)'\nunset key\n", unit.name);
+  angles += fmt::format("set ylabel {}\nset xlabel 't (s)'\nunset key\n", gnuplot_string(fmt::format("phi ({})", unit.name)));
   angles += "plot " + plot_list(files, phi);
   angles += "unset multiplot\n";
   figures.push_back(render("angles", "The paper's small angles theta(t) and phi(t) of every model (they swing "
@@ -332,20 +353,24 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
   const bool hanging = body.length < 0.0;
 
   std::string plot = fmt::format(
-      "set title '{} (A = {:g}, C = {:g} kg m^2 held)'\n"
+      "set title {}\n"
       "set grid\nset key outside below center maxrows 2 width -2\nset xlabel 'B/A'\nset ylabel 'spin w0 (rad/s)'\n"
       "set xrange [{}:{}]\nset yrange [0:{}]\n"
-      "plot '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#1f77b4' title 'ends of stable spins: first-order (4)', \\\n"
-      "  '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#ff7f0e' title 'body-fixed (5)', \\\n"
-      "  '{}' using 1:2 with points pt 7 ps 0.7 lc rgb '#2ca02c' title 'linearized (exact)', \\\n"
+      "plot {} using 1:2 with points pt 7 ps 0.7 lc rgb '#1f77b4' title 'ends of stable spins: first-order (4)', \\\n"
+      "  {} using 1:2 with points pt 7 ps 0.7 lc rgb '#ff7f0e' title 'body-fixed (5)', \\\n"
+      "  {} using 1:2 with points pt 7 ps 0.7 lc rgb '#2ca02c' title 'linearized (exact)', \\\n"
       "{}"
       "  '-' using 1:2 with points pt 3 ps 3 lw 3 lc rgb 'black' title 'this body'\n{} {}\ne\n",
-      hanging ? "Where the hanging body spins steadily" : "Where the top stands up", body.A, body.C, lo, hi, top,
-      scratch.file("first-order.ends"), scratch.file("body-fixed.ends"), scratch.file("linearized.ends"),
+      gnuplot_string(fmt::format("{} (A = {:g}, C = {:g} kg m^2 held)",
+                                 hanging ? "Where the hanging body spins steadily" : "Where the top stands up", body.A, body.C)),
+      lo, hi, top, gnuplot_string(scratch.file("first-order.ends")), gnuplot_string(scratch.file("body-fixed.ends")),
+      gnuplot_string(scratch.file("linearized.ends")),
       options.nonlinear
-          ? fmt::format("  '{}' using 1:2 with points pt 6 ps 1.4 lw 2 lc rgb '#2ca02c' title 'nonlinear: {}', \\\n"
-                        "  '{}' using 1:2 with points pt 2 ps 1.4 lw 2 lc rgb '#d62728' title 'nonlinear: {}', \\\n",
-                        scratch.file("up.dat"), diagram_words(body).first, scratch.file("falls.dat"), diagram_words(body).second)
+          ? fmt::format("  {} using 1:2 with points pt 6 ps 1.4 lw 2 lc rgb '#2ca02c' title {}, \\\n"
+                        "  {} using 1:2 with points pt 2 ps 1.4 lw 2 lc rgb '#d62728' title {}, \\\n",
+                        gnuplot_string(scratch.file("up.dat")), gnuplot_string(fmt::format("nonlinear: {}", diagram_words(body).first)),
+                        gnuplot_string(scratch.file("falls.dat")),
+                        gnuplot_string(fmt::format("nonlinear: {}", diagram_words(body).second)))
           : std::string("  1/0 with points pt 6 ps 1.4 lw 2 lc rgb '#888888' title 'nonlinear: not computed (spin too fast)', \\\n"),
       body.B / body.A, std::abs(state.spin));
   const std::string omitted =
@@ -379,19 +404,23 @@ Figure plot_wander(const std::string& dir, const Body& body, std::optional<doubl
       const Wander w = axis_wander(body, start, horizon, options);
       if (w.max_tilt && *w.max_tilt > 0.0) out << fmt::format("{} {}\n", start.spin, *w.max_tilt);
     }
-    plot_list += fmt::format("{}'{}' using 1:2 with linespoints pt 7 ps 0.5 lw 2 title 'started {:g} rad off vertical', "
-                             "{:g} with lines dt 2 lc rgb '#888888' title 'sqrt(2 x {:g})'",
-                             plot_list.empty() ? "" : ", ", file, delta, std::sqrt(2.0 * delta), delta);
+    plot_list += fmt::format("{}{} using 1:2 with linespoints pt 7 ps 0.5 lw 2 title {}, "
+                             "{:g} with lines dt 2 lc rgb '#888888' title {}",
+                             plot_list.empty() ? "" : ", ", gnuplot_string(file),
+                             gnuplot_string(fmt::format("started {:g} rad off vertical", delta)), std::sqrt(2.0 * delta),
+                             gnuplot_string(fmt::format("sqrt(2 x {:g})", delta)));
   }
   std::string plot = fmt::format(
-      "set title 'How far the axis wanders ({})'\nset grid\nset logscale y\nset format y '10^{{%L}}'\n"
+      "set title {}\nset grid\nset logscale y\nset format y '10^{{%L}}'\n"
       "set key outside below center maxrows 2\nset xlabel 'spin w0 (rad/s)'\nset ylabel 'largest tilt (rad)'\n"
       "set xrange [0:{}]\nset yrange [1e-4:4]\n",
-      exact ? "exact: the Lagrange top" : fmt::format("integrated over {:.3g} s", horizon), top);
+      gnuplot_string(fmt::format("How far the axis wanders ({})",
+                                 exact ? "exact: the Lagrange top" : fmt::format("integrated over {:.3g} s", horizon))),
+      top);
   if (critical > 0.0)
     plot += fmt::format("set arrow from {0},1e-4 to {0},4 nohead lc rgb '#d62728' lw 2\n"
-                        "set label 'critical spin {0:.6g} rad/s' at {0},2e-4 right offset -1,0 tc rgb '#d62728'\n",
-                        critical);
+                        "set label {1} at {0},2e-4 right offset -1,0 tc rgb '#d62728'\n",
+                        critical, gnuplot_string(fmt::format("critical spin {:.6g} rad/s", critical)));
   plot += "plot " + plot_list + "\n";
   return render("wander",
                 "The largest tilt of the axis against the spin for a start delta off vertical: above the critical "
@@ -420,24 +449,27 @@ Figure plot_sweep_map(const std::string& dir, const StabilityMap& map, const std
     }
   }
   auto label = [](const std::string& key) {
-    return key == "spin" ? std::string("spin w0 (rad/s)") : key == "B/A" || key == "C/A" ? key
+    return key == "spin" ? std::string("spin w0 (rad/s)") : key == "spin_rpm" ? std::string("spin w0 (rpm)")
+         : key == "B/A" || key == "C/A" ? key
          : key == "length" ? std::string("length R (m)") : key == "mass" ? std::string("mass (kg)")
          : key == "gravity" ? std::string("gravity (m/s^2)") : key + " (kg m^2)";
   };
   const char* one = truth ? "the exact linearisation" : "the paper (4)";
   const char* two = truth ? "the real body" : "the exact linearisation";
   const std::string plot = fmt::format(
-      "set title 'Stability map{}: {} against {}'\n"
-      "set xlabel '{}'\nset ylabel '{}'\nset tics out\nset autoscale fix\n"
+      "set title {}\n"
+      "set xlabel {}\nset ylabel {}\nset tics out\nset autoscale fix\n"
       "set palette maxcolors 4\nset palette defined (0 '#d9d9d9', 1 '#d62728', 2 '#1f77b4', 3 '#2ca02c')\n"
       "set cbrange [-0.5:3.5]\n"
-      "set cbtics ('both unstable' 0, 'only {} stable:' 1.15, 'a false promise' 0.85, 'only {} stable:' 2.15, "
-      "'{}' 1.85, 'both stable' 3) scale 0\n"
+      "set cbtics ('both unstable' 0, {} 1.15, 'a false promise' 0.85, {} 2.15, "
+      "{} 1.85, 'both stable' 3) scale 0\n"
       "set colorbox user origin 0.72,0.15 size 0.03,0.7\nset rmargin at screen 0.70\n"
-      "plot '{}' using 1:2:3 with image notitle\n",
-      where.empty() ? "" : " " + where, one, two, label(map.axes[0].key), label(map.axes[1].key),
-      truth ? "the linearisation" : "(4)", truth ? "the real body" : "the exact", truth ? "(linearly unstable)" : "(9) too strict",
-      data);
+      "plot {} using 1:2:3 with image notitle\n",
+      gnuplot_string(fmt::format("Stability map{}: {} against {}", where.empty() ? "" : " " + where, one, two)),
+      gnuplot_string(label(map.axes[0].key)), gnuplot_string(label(map.axes[1].key)),
+      gnuplot_string(fmt::format("only {} stable:", truth ? "the linearisation" : "(4)")),
+      gnuplot_string(fmt::format("only {} stable:", truth ? "the real body" : "the exact")),
+      gnuplot_string(truth ? "(linearly unstable)" : "(9) too strict"), gnuplot_string(data));
   const std::string caption =
       truth ? fmt::format("Each grid point{} coloured by the verdicts of the exact linearisation and of the nonlinear "
                           "simulation: red where the linearisation promises a stability the real body does not keep "
@@ -469,24 +501,25 @@ Figure plot_lifetime(const std::string& dir, const Body& body, const InitialStat
   }
   std::string marks;
   if (life.critical_spin && *life.critical_spin > 0.0)
-    marks += fmt::format("{:g} axes x1y1 with lines dt 2 lw 2 lc rgb '#d62728' title 'critical spin {:.4g} rad/s', ",
-                         *life.critical_spin, *life.critical_spin);
+    marks += fmt::format("{:g} axes x1y1 with lines dt 2 lw 2 lc rgb '#d62728' title {}, ", *life.critical_spin,
+                         gnuplot_string(fmt::format("critical spin {:.4g} rad/s", *life.critical_spin)));
   std::string arrows;
   if (life.time_to_critical && *life.time_to_critical > 0.0)
     arrows += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead dt 3 lc rgb '#d62728'\n"
-                          "set label 'spin law: critical at {0:.4g} s' at {0},graph 0.95 left offset 0.5,0 tc rgb '#d62728'\n",
-                          *life.time_to_critical);
+                          "set label {1} at {0},graph 0.95 left offset 0.5,0 tc rgb '#d62728'\n",
+                          *life.time_to_critical,
+                          gnuplot_string(fmt::format("spin law: critical at {:.4g} s", *life.time_to_critical)));
   if (life.fall_time)
     arrows += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead lw 2 lc rgb '#000000'\n"
-                          "set label 'falls at {0:.4g} s' at {0},graph 0.85 right offset -0.5,0\n",
-                          *life.fall_time);
+                          "set label {1} at {0},graph 0.85 right offset -0.5,0\n",
+                          *life.fall_time, gnuplot_string(fmt::format("falls at {:.4g} s", *life.fall_time)));
   const std::string plot = fmt::format(
       "set title 'How long it stays up'\nset grid\nset key outside below center maxrows 2\n"
       "set xlabel 't (s)'\nset ylabel 'spin w.k (rad/s)'\nset y2label 'tilt from the vertical (rad)'\n"
       "set ytics nomirror\nset y2tics\nset xrange [0:{}]\nset yrange [0:*]\nset y2range [0:*]\n{}"
-      "plot {}'{}' using 1:2 axes x1y1 with lines lw 3 lc rgb '#1f77b4' title 'spin (integrated)', "
+      "plot {}{} using 1:2 axes x1y1 with lines lw 3 lc rgb '#1f77b4' title 'spin (integrated)', "
       "'' using 1:3 axes x1y2 with lines lw 2 lc rgb '#2ca02c' title 'tilt (nonlinear, damped)'\n",
-      end, arrows, marks, data);
+      end, arrows, marks, gnuplot_string(data));
   return render("lifetime",
                 "The spin and the tilt of the damped top against time: the spin decays by the torques of SPEC "
                 "section 6 through the critical spin (dashed), after which the tilt grows until the top falls.",

@@ -31,12 +31,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// Text for the page, in an element or in a quoted attribute (a caption is an alt='...': "the
+/// paper's" ended it).
 std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     if (c == '<') out += "&lt;";
     else if (c == '>') out += "&gt;";
     else if (c == '&') out += "&amp;";
+    else if (c == '\'') out += "&#39;";
+    else if (c == '"') out += "&quot;";
     else out += c;
   }
   return out;
@@ -427,7 +431,8 @@ std::vector<std::pair<std::string, StabilityMap>> ReportMap::heat_maps() const {
   }
   const std::string key = held.empty() ? map.axes.back().key : held;
   const auto axis = std::find_if(map.axes.begin(), map.axes.end(), [&](const MapAxis& a) { return a.key == key; });
-  if (axis == map.axes.end()) throw InvalidInput("slice", fmt::format("'{}' is not a varied key of the map", key));
+  if (axis == map.axes.end())
+    throw InvalidInput("slice", fmt::format("'{}' is not a varied key of the map", io::printable(key)));
   std::vector<double> at = values;
   if (at.empty()) at = {axis->values.front(), axis->values[axis->values.size() / 2], axis->values.back()};
   std::vector<std::pair<std::string, StabilityMap>> out;

@@ -87,17 +87,26 @@ double SweepAxis::value(std::size_t i) const {
   return start + (stop - start) * static_cast<double>(i) / static_cast<double>(count - 1);
 }
 
+bool is_sweep_key(std::string_view key) {
+  return std::find(std::begin(kKeys), std::end(kKeys), key) != std::end(kKeys);
+}
+
+std::string sweep_keys_text() {
+  std::string text;
+  for (std::string_view key : kKeys) text += fmt::format("{}{}", text.empty() ? "" : ", ", key);
+  return text;
+}
+
 SweepAxis parse_sweep_axis(std::string_view text) {
   const auto eq = text.find('=');
-  const std::string_view rule = "must be KEY=START:STOP:COUNT with KEY one of A, B, C, mass, gravity, length, spin, spin_rpm, B/A, C/A";
-  if (eq == std::string_view::npos) throw InvalidInput("vary", std::string(rule));
+  const std::string rule = "must be KEY=START:STOP:COUNT with KEY one of " + sweep_keys_text();
+  if (eq == std::string_view::npos) throw InvalidInput("vary", rule);
   SweepAxis axis;
   axis.key = std::string(text.substr(0, eq));
-  if (std::find(std::begin(kKeys), std::end(kKeys), axis.key) == std::end(kKeys))
-    throw InvalidInput("vary", fmt::format("unknown key '{}': {}", axis.key, rule));
+  if (!is_sweep_key(axis.key)) throw InvalidInput("vary", fmt::format("unknown key '{}': {}", axis.key, rule));
   const std::string_view range = text.substr(eq + 1);
   const auto c1 = range.find(':'), c2 = range.find(':', c1 == std::string_view::npos ? c1 : c1 + 1);
-  if (c1 == std::string_view::npos || c2 == std::string_view::npos) throw InvalidInput("vary", std::string(rule));
+  if (c1 == std::string_view::npos || c2 == std::string_view::npos) throw InvalidInput("vary", rule);
   axis.start = parse_number(range.substr(0, c1), "START");
   axis.stop = parse_number(range.substr(c1 + 1, c2 - c1 - 1), "STOP");
   const std::string_view count = range.substr(c2 + 1);

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,15 @@
 #include "heavytop/table.hpp"
 
 namespace heavytop::report {
+
+/// `text` as a gnuplot string literal, quotes included: every string a figure's script holds
+/// goes through it. Double quotes, with \" and \\, and ` as the octal escape \140: gnuplot
+/// substitutes `command` on a command line even inside double quotes, so no backquote may be
+/// there raw; a single-quoted string cannot hold a leading quote or two in a row (gnuplot 5.4
+/// reads '''' as two empty strings: doubling is not enough). Neither @macros nor $0 are expanded
+/// inside a string. Control characters are shown as io::printable() shows them (a newline would
+/// end the command).
+std::string gnuplot_string(std::string_view text);
 
 /// Each function draws into `dir`, a private scratch folder (data files, gnuplot scripts,
 /// NAME.png and NAME.svg): gnuplot runs inside it on relative names only.
