@@ -420,6 +420,20 @@ class Staging {
   std::string path_;
 };
 
+// Everything is made: the figures from the staging folder and the data, each file into `dir`
+// by a temporary name and a rename (the data's last file, report.html, appears last).
+void put_in_place(const std::string& dir, const Staging& staging, const std::vector<Figure>& figures,
+                  const std::vector<std::pair<std::string, std::string>>& data) {
+  for (const Figure& f : figures)
+    for (const char* extension : {".png", ".svg"}) {
+      const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();
+      io::write_atomically((fs::path(dir) / (f.name + extension)).string(), [&](const std::string& to) {
+        fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+      });
+    }
+  for (const auto& [name, content] : data) write_output((fs::path(dir) / name).string(), content);
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, StabilityMap>> ReportMap::heat_maps() const {
@@ -644,14 +658,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
 
   // Everything is made: put it in place, each file by a temporary name and a rename.
   figures.insert(figures.end(), map_figures.begin(), map_figures.end());
-  for (const Figure& f : figures)
-    for (const char* extension : {".png", ".svg"}) {
-      const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();
-      io::write_atomically((fs::path(dir) / (f.name + extension)).string(), [&](const std::string& to) {
-        fs::copy_file(from, to, fs::copy_options::overwrite_existing);
-      });
-    }
-  for (const auto& [name, content] : data) write_output((fs::path(dir) / name).string(), content);
+  put_in_place(dir, staging, figures, data);
 }
 
 
@@ -837,14 +844,7 @@ void write_table_report(const std::string& dir, const Body& body, const Table& t
     data.emplace_back(asset.name, std::string(reinterpret_cast<const char*>(asset.data), asset.size));
   data.emplace_back("report.html", html.str());
 
-  for (const Figure& f : figures)
-    for (const char* extension : {".png", ".svg"}) {
-      const std::string from = (fs::path(staging.path()) / (f.name + extension)).string();
-      io::write_atomically((fs::path(dir) / (f.name + extension)).string(), [&](const std::string& to) {
-        fs::copy_file(from, to, fs::copy_options::overwrite_existing);
-      });
-    }
-  for (const auto& [name, content] : data) write_output((fs::path(dir) / name).string(), content);
+  put_in_place(dir, staging, figures, data);
 }
 
 namespace {
