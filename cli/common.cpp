@@ -142,19 +142,18 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses us
     };
     number(t.tip_radius, "--tip-radius", "m, radius of the tip's sphere about O (>= 0; 0: a sharp point)", "Body");
     number(t.rim_radius, "--rim-radius", "m, or of the rim, a ring about the axis through O (>= 0; a coin)", "Body");
-    t.contact = command.add_option("--contact", t.contact_value,
-                                   "pivot (O fixed), or the body on a table: frictionless, rolling or sliding")
-                    ->type_name("NAME")
-                    ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
-                    ->default_str("pivot")
-                    ->group("Table");
+    const auto named = [&](std::string& value, const char* name, const char* help, const char* shown) {
+      return command.add_option(name, value, help)
+          ->type_name("NAME")
+          ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+          ->default_str(shown)
+          ->group("Table");
+    };
+    t.contact = named(t.contact_value, "--contact",
+                      "pivot (O fixed), or the body on a table: frictionless, rolling or sliding", "pivot");
     number(t.friction, "--table-friction", "mu, the table's friction coefficient (sliding; >= 0)", "Table");
-    t.friction_law = command.add_option("--friction-law", t.friction_law_value,
-                                        "sliding: viscous (F = -mu N v / slip_speed) or coulomb")
-                         ->type_name("NAME")
-                         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
-                         ->default_str("viscous")
-                         ->group("Table");
+    t.friction_law = named(t.friction_law_value, "--friction-law",
+                           "sliding: viscous (F = -mu N v / slip_speed) or coulomb", "viscous");
     number(t.slip_speed, "--slip-speed", "m/s, the viscous law's reference speed (> 0, default 1)", "Table");
   }
   command.add_option("--format", format_, "output format")

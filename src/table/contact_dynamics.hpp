@@ -77,6 +77,11 @@ struct ContactGeometry {
   Vec3<T> u;  // the unit vector from O towards P's side in the ring's plane (rim only; else 0)
   Vec3<T> s;  // m: G - P
   T f1, f2;   // dz_G/dc (m), d2 z_G/dc^2 (m)
+
+  /// m: O's height above the table, r + rho S.
+  T height_of_O(const TableParameters& p) const { return p.tip_radius + p.rim_radius * S; }
+  /// m: G's height above the table, f(c) = r + rho S + l c.
+  T height_of_G(const TableParameters& p) const { return height_of_O(p) + p.length * c; }
 };
 
 template <class T>

@@ -148,6 +148,9 @@ struct TableSystem {
   }
 };
 
+// m: P in the fixed frame (its height 0): G's horizontal position less G - P.
+V3 contact_point(const TableVector& y, const Instant& in) { return V3(y[7], y[8], 0.0) - in.R * in.geometry.s; }
+
 // The quantities a run watches (SPEC section 16's columns).
 struct Watched {
   double energy, jellett, vertical_momentum;
@@ -155,8 +158,8 @@ struct Watched {
 
 Watched watched(const TableParameters& p, const Instant& in) {
   const V3 L = detail::inertia_times(p, in.omega);
-  const double height = p.tip_radius + p.rim_radius * in.geometry.S + p.length * in.geometry.c;
-  return {0.5 * p.mass * in.velocity.squaredNorm() + 0.5 * in.omega.dot(L) + p.mass * p.gravity * height,
+  return {0.5 * p.mass * in.velocity.squaredNorm() + 0.5 * in.omega.dot(L) +
+              p.mass * p.gravity * in.geometry.height_of_G(p),
           L.dot(in.geometry.s), L.dot(in.gamma)};
 }
 
@@ -209,14 +212,14 @@ class TableSampler {
     out_.phi.push_back(a.phi);
     out_.theta_rate.push_back(a.theta_rate);
     out_.phi_rate.push_back(a.phi_rate);
-    const V3 P = V3(y[7], y[8], 0.0) - in.R * in.geometry.s;
+    const V3 P = contact_point(y, in);
     const V3 slip = in.motion.slip - in.motion.slip.dot(in.gamma) * in.gamma;
     const Watched w = watched(p, in);
     const double values[] = {tilt_of_axis(k[0], k[1], k[2]),
-                             azimuth_(k[0], k[1]),
+                             azimuth_.of_axis(k[0], k[1]),
                              P[0],
                              P[1],
-                             p.tip_radius + p.rim_radius * in.geometry.S,
+                             in.geometry.height_of_O(p),
                              in.motion.normal,
                              p.contact == Contact::Rolling ? 0.0 : slip.norm(),
                              in.omega[2],
@@ -227,12 +230,8 @@ class TableSampler {
   }
 
  private:
-  struct Azimuth {
-    ContinuousAzimuth continuous;
-    double operator()(double kx, double ky) { return continuous.of_axis(kx, ky); }
-  };
   Trajectory& out_;
-  Azimuth azimuth_;
+  ContinuousAzimuth azimuth_;
 };
 
 TableVector initial_vector(const TableParameters& p, const InitialState& initial) {
@@ -307,8 +306,7 @@ class TableIntegration {
                                           "the table: start it tilted");
     initial_ = watched(p_, in0);
     const double reach = std::abs(p_.length) + p_.tip_radius + p_.rim_radius;
-    const double kinetic = initial_.energy - p_.mass * p_.gravity * (p_.tip_radius + p_.rim_radius * in0.geometry.S +
-                                                                      p_.length * in0.geometry.c);
+    const double kinetic = initial_.energy - p_.mass * p_.gravity * in0.geometry.height_of_G(p_);
     const double L0 = detail::inertia_times(p_, in0.omega).norm();
     auto positive = [](double x) { return x > 0.0 ? x : 1.0; };
     scales_ = {positive(kinetic + p_.mass * p_.gravity * reach), positive(L0 * reach), positive(L0)};
@@ -553,7 +551,7 @@ class AnswerWatch {
       view.state_at(t, y);
       const double tilt = tilt_of(y);
       const Instant in = instant_of(view.params, y);
-      const V3 P = V3(y[7], y[8], 0.0) - in.R * in.geometry.s;
+      const V3 P = contact_point(y, in);
       a_.track = std::max(a_.track, std::hypot(P[0], P[1]));
       a_.max_tilt = std::max(a_.max_tilt, tilt);
       const double t_before = t_;
