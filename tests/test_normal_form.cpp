@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -518,6 +519,126 @@ TEST(NormalForm, SlowExchangeAtOneToThreeFollowsTheResonantCoefficient) {
   EXPECT_GT(order, 2.0);                                 // to O(r) (3x the action, 3x the relative error)
   EXPECT_LT(order, 4.5);
 }
+
+// ---- Scale-free in mass (issue 46) -----------------------------------------------------------
+
+/// The body (A, B, C, m g R) with A, B, C and the mass all times `mass_scale`: the same motion
+/// (time is unchanged), so the same verdict, frequencies and stable spins; the c's, D and a13
+/// divided by mass_scale (they are per J s^2), L and the actions times it.
+Body mass_scaled(const Case& c, double mass_scale) {
+  Body b;
+  b.A = c.A * mass_scale;
+  b.B = c.B * mass_scale;
+  b.C = c.C * mass_scale;
+  b.mass = mass_scale;
+  b.gravity = 1.0;
+  b.length = c.mgR;
+  return b;
+}
+
+/// Relative difference, 0 for two zeros.
+double relative(double x, double y) {
+  const double size = std::max(std::abs(x), std::abs(y));
+  return size == 0.0 ? 0.0 : std::abs(x - y) / size;
+}
+
+bool same_intervals(const std::vector<SpinInterval>& x, const std::vector<SpinInterval>& y, double tolerance,
+                    std::string& why) {
+  if (x.size() != y.size()) {
+    why = "pieces " + std::to_string(x.size()) + " against " + std::to_string(y.size());
+    return false;
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const bool same = relative(x[i].lo, y[i].lo) <= tolerance && x[i].lo_included == y[i].lo_included &&
+                      x[i].hi.has_value() == y[i].hi.has_value() &&
+                      (!x[i].hi || (relative(*x[i].hi, *y[i].hi) <= tolerance && x[i].hi_included == y[i].hi_included));
+    if (!same) {
+      why = "piece " + std::to_string(i) + " lo " + std::to_string(x[i].lo) + " against " + std::to_string(y[i].lo);
+      return false;
+    }
+  }
+  return true;
+}
+
+// Index 2, linearly stable, away from 1:1 and 1:3 (kCases), and the oblate body of the D = 0 test,
+// whose stable spins have a D = 0 exception: the bodies and spins scaled below.
+const Case kScaledCases[] = {{1.0, 1.5, 0.5, 1.0, 6.0}, {1.0, 1.2, 0.8, 1.0, 4.0}, {1.0, 1.2, 0.7, -1.0, 3.0},
+                             {1.52594, 1.894034, 1.59991, 1.0, 3.0}};
+
+class MassScaling : public ::testing::TestWithParam<double> {};
+
+TEST_P(MassScaling, KamVerdictFrequenciesAndStableSpinsAreThoseOfTheUnscaledBody) {
+  const double scale = GetParam(), tolerance = 1e-9;
+  const Eigen::Matrix4d J = canonical_J();
+  for (const Case& c : kScaledCases) {
+    SCOPED_TRACE(::testing::Message() << "A " << c.A << " B " << c.B << " C " << c.C << " mgR " << c.mgR
+                                      << " spin " << c.spin << " scaled by " << scale);
+    const Body one = mass_scaled(c, 1.0), b = mass_scaled(c, scale);
+    const LyapunovVerdict want = lyapunov_stability(one, c.spin), got = lyapunov_stability(b, c.spin);
+    EXPECT_EQ(got.verdict, want.verdict);
+    EXPECT_EQ(got.certificate, want.certificate);
+    EXPECT_EQ(got.energy_index, want.energy_index);
+    ASSERT_TRUE(want.normal_form && got.normal_form);
+    const NormalForm &nf = *got.normal_form, &nf1 = *want.normal_form;
+    EXPECT_LE(relative(nf.w1, nf1.w1), tolerance);
+    EXPECT_LE(relative(nf.w2, nf1.w2), tolerance);
+    EXPECT_EQ(nf.resonance, nf1.resonance);
+    const double c_size = std::abs(nf1.c20) + std::abs(nf1.c11) + std::abs(nf1.c02);
+    for (auto [x, y] : {std::pair{nf.c20, nf1.c20}, {nf.c11, nf1.c11}, {nf.c02, nf1.c02}})
+      EXPECT_LE(std::abs(x * scale - y), tolerance * c_size);
+    EXPECT_LE(relative(nf.D * scale, nf1.D), tolerance);
+    EXPECT_LE(relative(nf.D_scale * scale, nf1.D_scale), tolerance);
+    // The change is still symplectic and diagonalises the chart's H2 in its own units.
+    EXPECT_LT((nf.T.transpose() * J * nf.T - J).norm(), 1e-12);
+    Eigen::Matrix4d H2 = Eigen::Matrix4d::Zero();
+    H2.diagonal() << nf.w1, -nf.w2, nf.w1, -nf.w2;
+    EXPECT_LT((nf.T.transpose() * reduced_quadratic_form(b, nf.L) * nf.T - H2).norm(), 1e-12 * (nf.w1 + nf.w2));
+    // The frequencies are the scaled body's own linearized model's (the tolerance of
+    // DiagonalisationIsSymplecticWithTheLinearisedFrequencies).
+    const StabilityVerdict lin = linear_stability(linear_model(LinearModelKind::Linearized, b), c.spin);
+    ASSERT_TRUE(lin.stable);
+    ASSERT_EQ(lin.frequencies.size(), 2u);
+    const double lo = std::min(nf.w1, nf.w2), hi = std::max(nf.w1, nf.w2);
+    EXPECT_NEAR(lin.frequencies[0], lo, 1e-10 * hi);
+    EXPECT_NEAR(lin.frequencies[1], hi, 1e-10 * hi);
+
+    // The stable spins: the Lyapunov ones (their KAM exceptions found by the same scan) and
+    // every linear model's.
+    std::string why;
+    EXPECT_TRUE(same_intervals(lyapunov_stable_spin_intervals(b), lyapunov_stable_spin_intervals(one), tolerance, why))
+        << why;
+    const auto exceptions = kam_exceptions(b), exceptions1 = kam_exceptions(one);
+    ASSERT_EQ(exceptions.size(), exceptions1.size());
+    for (std::size_t i = 0; i < exceptions.size(); ++i) {
+      EXPECT_LE(relative(exceptions[i].spin, exceptions1[i].spin), tolerance);
+      EXPECT_EQ(exceptions[i].what, exceptions1[i].what);
+    }
+    for (LinearModelKind kind : kLinearModels)
+      EXPECT_TRUE(same_intervals(stable_spin_intervals(linear_model(kind, b)),
+                                 stable_spin_intervals(linear_model(kind, one)), tolerance, why))
+          << name(kind) << ": " << why;
+  }
+}
+
+TEST_P(MassScaling, OneToThreeResonanceAndItsCoefficientScale) {
+  const double scale = GetParam();
+  const Case c{1.0, 1.2, 0.8, 1.0, 0.0};
+  const Body one = mass_scaled(c, 1.0), b = mass_scaled(c, scale);
+  const double w13 = spin_at_ratio(one, 4.0, 6.0, 3.0);
+  const LyapunovVerdict want = lyapunov_stability(one, w13), got = lyapunov_stability(b, w13);
+  ASSERT_TRUE(want.normal_form && got.normal_form);
+  EXPECT_EQ(got.normal_form->resonance, 3);
+  EXPECT_EQ(got.certificate, want.certificate);
+  ASSERT_TRUE(got.normal_form->a13 && want.normal_form->a13);
+  EXPECT_LE(relative(*got.normal_form->a13 * scale, *want.normal_form->a13), 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(NormalForm, MassScaling,
+                         ::testing::Values(1e-20, 1e-16, 1e-12, 1e-8, 1e-4, 1.0, 1e4, 1e8, 1e12, 1e16, 1e20),
+                         [](const ::testing::TestParamInfo<double>& info) {
+                           const int e = static_cast<int>(std::lround(std::log10(info.param)));
+                           return e < 0 ? "MassTimes1em" + std::to_string(-e) : "MassTimes1e" + std::to_string(e);
+                         });
 
 }  // namespace
 }  // namespace heavytop
