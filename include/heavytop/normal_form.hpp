@@ -15,6 +15,12 @@
 /// z = T zeta, zeta = (x1, x2, y1, y2), H2 = w1 r1 - w2 r2, r_i = (x_i^2 + y_i^2) / 2 (J s),
 /// and the normal form is H = w1 r1 - w2 r2 + c20 r1^2 + c11 r1 r2 + c02 r2^2 (+ the resonant
 /// harmonic at 1:3) + O(|z|^6).
+///
+/// birkhoff_normal_form() computes in dimensionless units (moments and m g R divided by a
+/// power-of-two reference moment, time unchanged) and returns the chart's units above, so that
+/// its verdicts and frequencies do not depend on the unit of mass (issue 46; docs/lyapunov.md,
+/// "Computed without units"). reduced_quadratic_form, reduced_quartic and reduced_hamiltonian
+/// are in the chart's units.
 
 #include <array>
 #include <optional>
