@@ -52,8 +52,9 @@ struct SpinInterval {
 /// to rounding; no grid is scanned. Under drag the set is often empty (Kelvin-Tait-Chetaev).
 std::vector<SpinInterval> stable_spin_intervals(const LinearModel& model);
 
-/// rad/s, the lo of the unbounded stable interval: 0 when stable at every spin, nullopt when
-/// no spin stabilises the model.
+/// rad/s, the lo of the unbounded stable interval: 0 when stable at every spin > 0 (at 0 itself
+/// too only when that interval's lo_included: m g R = 0 gives 0 with the rest excluded, a Jordan
+/// block), nullopt when no spin stabilises the model.
 std::optional<double> critical_spin(const std::vector<SpinInterval>& intervals);
 
 /// One linear model's stability: its verdict at a spin and the spins at which it is stable.
