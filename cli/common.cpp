@@ -58,7 +58,7 @@ const char* group_of(std::string_view key) {
 std::string flag_of(const std::string& field) {
   static const std::map<std::string, std::string> flags = {
       {"rtol", "--rtol"}, {"atol", "--atol"},       {"max_steps", "--max-steps"}, {"step", "--step"},
-      {"order", "--order"}, {"horizon", "--horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
+      {"order", "--order"}, {"horizon", "--horizon"}, {"lifetime_horizon", "--lifetime-horizon"}, {"max_tilt", "--max-tilt"},  {"vary", "--vary"},
       {"t_end", "--t-end"}, {"times", "--t-end"}, {"tilt", "--tilt"}, {"model", "--model"},
       {"method", "--method"}, {"integrator", "--integrator"}, {"slice", "--slice"}, {"map", "--map"},
   };
@@ -339,8 +339,8 @@ int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {  // `heavytop --version`: "heavytop VERSION" on stdout, exit 0
     return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << fmt::format("heavytop: error: {}\n", e.what());
+  } catch (const CLI::ParseError& e) {  // every message one line, whatever text the person gave
+    std::cerr << fmt::format("heavytop: error: {}\n", printable(e.what()));
     return 2;
   } catch (const InvalidInput& e) {
     std::cerr << fmt::format("heavytop: error: {}: {}\n", flag_of(e.key()), e.rule());
@@ -349,10 +349,10 @@ int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
     std::cerr << "heavytop: error: out of memory (fewer --samples, or --format csv, which streams)\n";
     return 1;
   } catch (const std::filesystem::filesystem_error& e) {  // its what() is the library's wording
-    std::cerr << fmt::format("heavytop: error: cannot use '{}': {}\n", e.path1().string(), e.code().message());
+    std::cerr << fmt::format("heavytop: error: cannot use '{}': {}\n", printable(e.path1().string()), e.code().message());
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << fmt::format("heavytop: error: {}\n", e.what());
+    std::cerr << fmt::format("heavytop: error: {}\n", printable(e.what()));
     return 1;
   }
 }

@@ -35,10 +35,7 @@ Action add_lifetime_command(CLI::App& app) {
     inputs->resolve();
     LifetimeOptions o = *options;
     if (horizon_option->count()) o.horizon = *horizon;
-    if (std::string why; !o.IsValid(&why)) {
-      const auto colon = why.find(": ");
-      throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
-    }
+    validate(o);
     const Lifetime life = [&] {
       ProgressBar bar("lifetime", spin_decay(inputs->body(), inputs->state(), o).horizon);
       return lifetime(inputs->body(), inputs->state(), o, [&bar](double t) { bar.update(t); });

@@ -1,7 +1,6 @@
 // heavytop stability: each linear model's verdict at the spin, its stable spins, its eigenvalues;
 // then the real body's Lyapunov verdict (SPEC section 7) and how far its axis wanders; first of
 // all, the answer (SPEC section 14).
-#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -36,12 +35,8 @@ Action add_stability_command(CLI::App& app) {
       ->default_str("1");
   return [inputs, options, lifetime_horizon] {
     inputs->resolve();
-    if (!(std::isfinite(options->horizon) && options->horizon > 0.0))
-      throw InvalidInput("--horizon", "must be a finite number > 0");
-    if (!(options->max_tilt > 0.0 && options->max_tilt <= M_PI)) throw InvalidInput("--max-tilt", "must be in (0, pi]");
-    if (*lifetime_horizon && !(std::isfinite(**lifetime_horizon) && **lifetime_horizon > 0.0))
-      throw InvalidInput("--lifetime-horizon", "must be a finite number > 0");
     options->damped_horizon = *lifetime_horizon;
+    validate(*options);  // before the body's analyses: a bad option costs nothing
     const Body& body = inputs->body();
     if (const Table& table = inputs->table(); table.on_table()) {  // SPEC section 16
       const TableAnalysis analysis = analyse_top_on_table(body, table, inputs->state(), *options);

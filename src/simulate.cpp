@@ -167,6 +167,11 @@ TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const Initia
   }
 }
 
+void validate(const SimulateOptions& options) {
+  validate(options.adaptive);
+  if (options.integrator == Integrator::Splitting) validate(options.splitting);
+}
+
 bool SimulateOptions::IsValid(std::string* why) const {
   if (!adaptive.IsValid(why)) return false;
   return integrator != Integrator::Splitting || splitting.IsValid(why);
@@ -216,10 +221,7 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
                       const SimulateOptions& options, const char* time_key, NonlinearSummary* adaptive_out) {
   validate(body);
   validate(initial);
-  if (std::string why; !options.IsValid(&why)) {
-    const auto colon = why.find(": ");
-    throw InvalidInput(why.substr(0, colon), colon == std::string::npos ? why : why.substr(colon + 2));
-  }
+  validate(options);
   if (model == Model::LagrangeExact) validate_symmetric(body);
   validate_damping(model, body, options);
   const bool general = is_general(body);

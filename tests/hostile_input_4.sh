@@ -73,4 +73,37 @@ assert f"The map {escaped}.csv</h2>" in page, "the map's name"
 assert f"{escaped}.toml" in page, "the configuration's name in the title"
 PY
 
+# ---- 3. A map with a key twice: refused naming it (a sweep varies each key once) ----------------
+python3 -c "t = open('good.csv').read(); open('twice.csv', 'w').write('spin' + t[3:])"
+check "a map whose key is there twice is refused, exit 2" run 2 report --map twice.csv --output rep-twice
+check "... saying so, in one line, no output folder" bash -c "grep -qF \"the axis key 'spin' is there twice\" err && [ \$(wc -l < err) -eq 1 ] && [ ! -e rep-twice ]"
+
+# ---- 4. Every message is one line, whatever text went into it (a path, a key, a value) ---------
+check "a configuration path holding a newline and an escape: one line" run 2 stability --config $'a\nb\x1b[2J.toml'
+check "... one line" one_line
+check "a sweep key holding a newline: one line" run 2 sweep --vary $'sp\nin=0:1:2'
+check "... one line" one_line
+check "an output folder holding a newline that cannot be made: one line" run 2 report --output $'/proc/no\nway'
+check "... one line" one_line
+
+# ---- 5. Each horizon under its own key, refused before it runs; the run states what it covered --
+check "--lifetime-horizon 1e300 on a damped body: exit 2" run 2 stability --lifetime-horizon 1e300 --axial-damping 2e-7
+check "... naming --lifetime-horizon (it named --horizon)" says "^heavytop: error: --lifetime-horizon: too long"
+check "--horizon 1e300 on an undecided body: exit 2 at once (it ran 50 s)" run 2 stability --spin 100 --horizon 1e300
+check "... naming --horizon" says "^heavytop: error: --horizon: too long"
+
+# ---- 6. A start beyond the limit: what a fall means there is decided once and said -------------
+check "a start past --max-tilt" run 0 stability --theta0 0.5 --max-tilt 0.1 --format json
+check "... is not a fall at t = 0 (the review's said 'falls' at spin 100 or damped)" json "
+a = d['answer']; assert a['falls_at'] is None and a['verdict'] == 'stays up', a"
+check "... in words" run 0 stability --theta0 0.5 --max-tilt 0.1
+check "... which say what a fall is there" grep -q "started beyond the 5.73 degrees (0.1 rad) limit of a fall, so a fall here is a tilt past 104 degrees (1.82 rad)" out
+check "Woodhouse's top set off at 60 degrees (past the default 1 rad)" run 0 stability --A 1e-4 --B 1e-4 --C 1.2e-5 --mass 0.06 --length 0.025 --spin 175.089 --theta0 1.0472 --phi-rate0 -12.1305 --format json
+check "... does not fall at t = 0" json "a = d['answer']; assert a['verdict'] != 'falls' and a['falls_at'] is None, a"
+check "a top started upside down" run 0 stability --theta0 3.141592653589793 --format json
+check "... is not 'stays up', proven" json "a = d['answer']; assert not (a['verdict'] == 'stays up' and a['proven']), a"
+check "a damped top started past the limit (lifetime)" run 0 lifetime --axial-damping 2e-6 --theta0 1.2 --format json
+check "... falls past halfway to upside down, not at t = 0" json "
+f = d['fall']; import math; assert f['time'] > 0.5 and abs(f['max_tilt'] - (1.2 + math.pi) / 2) < 1e-15, f"
+
 finish

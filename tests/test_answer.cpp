@@ -196,5 +196,119 @@ TEST(Answer, OptionsAreChecked) {
   EXPECT_THROW(analyse_top(example_toy_top(), example_motion(), bad), InvalidInput);
 }
 
+InvalidInput refusal(const Body& body, const InitialState& start, const AnswerOptions& options) {
+  try {
+    analyse_top(body, start, options);
+  } catch (const InvalidInput& e) {
+    return e;
+  }
+  ADD_FAILURE() << "not refused";
+  return InvalidInput("", "");
+}
+
+// Each horizon is refused under its own key (issue 46: the damped run's was named "horizon",
+// the conservative run's), and one a double cannot resolve before anything runs.
+TEST(Answer, EachHorizonIsRefusedUnderItsOwnKey) {
+  Body damped = example_toy_top();
+  damped.damping.axial = 2e-7;
+  AnswerOptions options;
+  options.damped_horizon = -1.0;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_EQ(why.substr(0, 17), "lifetime_horizon:");
+  EXPECT_EQ(refusal(damped, example_motion(), options).key(), "lifetime_horizon");
+  options.damped_horizon = 1e300;  // valid as a number, beyond what a double resolves at this spin
+  EXPECT_EQ(refusal(damped, example_motion(), options).key(), "lifetime_horizon");
+  AnswerOptions conservative;
+  conservative.horizon = 1e300;
+  EXPECT_EQ(refusal(example_toy_top(), make_state(100.0, 0.05), conservative).key(), "horizon");
+}
+
+// A run that cannot go on states how far it got: the answer's horizon is that time, not the one
+// asked (issue 46: "stays up for the horizon" with horizon 1e300 after following 3e4 s).
+TEST(Answer, StoppedRunStatesTheHorizonItCovered) {
+  AnswerOptions few_steps;
+  few_steps.integrator.max_steps = 200;
+  Body damped = example_toy_top();
+  damped.damping.axial = 2e-7;
+  for (const Body& body : {example_toy_top(), damped}) {
+    const TopAnalysis a = analyse_top(body, make_state(100.0, 0.05), few_steps);
+    EXPECT_EQ(a.answer.why, AnswerCase::RunStopped);
+    EXPECT_EQ(a.answer.verdict, AnswerVerdict::StaysUpForHorizon);
+    EXPECT_FALSE(a.answer.proven);
+    EXPECT_FALSE(a.answer.max_tilt);
+    // 200 steps of a spin of 100 rad/s at rtol 1e-10 cover a fraction of a second, all of it.
+    EXPECT_GT(a.answer.horizon, 0.0);
+    EXPECT_LT(a.answer.horizon, 1.0);
+    EXPECT_NE(a.answer.stopped.find("max_steps = 200"), std::string::npos) << a.answer.stopped;
+    // The time stated is the run's own: the same run to just before it covers it without failing.
+    AnswerOptions up_to = few_steps;
+    up_to.horizon = 0.9 * a.answer.horizon;
+    up_to.damped_horizon = up_to.horizon;
+    EXPECT_NE(analyse_top(body, make_state(100.0, 0.05), up_to).answer.why, AnswerCase::RunStopped);
+  }
+}
+
+// A start at or beyond the limit given: a fall is a tilt past halfway from the start to upside
+// down (fall_tilt), in the answer and lifetime() alike, never "falls at t = 0".
+TEST(Answer, StartBeyondTheLimitFallsOnlyPastHalfwayToUpsideDown) {
+  EXPECT_EQ(fall_tilt(0.5, 1.0), 1.0);
+  EXPECT_EQ(fall_tilt(1.0, 1.0), 0.5 * (1.0 + std::numbers::pi));
+  AnswerOptions tight;
+  tight.max_tilt = 0.1;
+  const TopAnalysis proven = analyse_top(example_toy_top(), make_state(200.0, 0.5), tight);
+  EXPECT_EQ(proven.answer.fall_threshold, 0.5 * (0.5 + std::numbers::pi));
+  EXPECT_EQ(proven.answer.limit_given, 0.1);
+  EXPECT_EQ(proven.answer.verdict, AnswerVerdict::StaysUp);  // its closed-form wander stays below 1.82 rad
+  // Woodhouse's top set off at 60 degrees precessing below its critical spin (202 rad/s): it does
+  // not fall, and its tilt stays about its start (the review's run said "falls at t = 0").
+  Body woodhouse = make_body(1e-4, 1e-4, 1.2e-5, 0.06 * 9.81 * 0.025);
+  InitialState start = make_state(175.089, 1.0472);
+  start.phi_rate0 = -12.1305;
+  const TopAnalysis w = analyse_top(woodhouse, start);
+  EXPECT_EQ(w.lyapunov.verdict.verdict, LyapunovVerdictKind::Unstable);
+  EXPECT_EQ(w.answer.verdict, AnswerVerdict::StaysUpForHorizon);
+  ASSERT_TRUE(w.answer.max_tilt);
+  EXPECT_LT(*w.answer.max_tilt, w.answer.fall_threshold);
+  // Upside down: the proof's bound (the wander reaches pi) proves nothing; not "stays up", proven.
+  const TopAnalysis down = analyse_top(example_toy_top(), make_state(200.0, std::numbers::pi));
+  EXPECT_FALSE(down.answer.proven);
+  EXPECT_EQ(down.answer.fall_threshold, std::numbers::pi);
+  // lifetime(): a damped top started at 1.2 rad with the default 1 rad does not fall at t = 0; it
+  // falls where a separate run's tilt passes (1.2 + pi) / 2.
+  Body damped = example_toy_top();
+  damped.damping.axial = 2e-6;
+  const InitialState tilted = make_state(200.0, 1.2);
+  const Lifetime life = lifetime(damped, tilted);
+  EXPECT_EQ(life.max_tilt, 0.5 * (1.2 + std::numbers::pi));
+  EXPECT_EQ(life.limit_given, 1.0);
+  ASSERT_TRUE(life.fall_time);
+  const TiltExtremes separate = tilt_extremes(Integrator::Taylor, damped, tilted, 100.0, life.max_tilt, Tolerances{});
+  EXPECT_GT(*life.fall_time, 0.5);
+  ASSERT_TRUE(separate.exceeded);
+  EXPECT_NEAR(*life.fall_time, separate.t_end, 1e-6 * separate.t_end);
+}
+
+// Without gravity every spin > 0 is stable but rest is not (issue 46: "stable at every spin"
+// while the verdict at spin 0 was unstable): the answer keeps the open end.
+TEST(Answer, WithoutGravityRestIsNotStable) {
+  Body free = example_toy_top();
+  free.gravity = 0.0;
+  const TopAnalysis a = analyse_top(free, make_state(0.0, 0.05));
+  EXPECT_EQ(a.lyapunov.verdict.verdict, LyapunovVerdictKind::Unstable);
+  ASSERT_TRUE(a.answer.min_spin);
+  EXPECT_EQ(*a.answer.min_spin, 0.0);
+  EXPECT_FALSE(a.answer.min_spin_included);
+  EXPECT_TRUE(analyse_top(make_body(1.0, 1.0, 0.5, -1.0), make_state(0.0, 0.2)).answer.min_spin_included);
+}
+
+// A key or rule holding a newline or an escape sequence still makes a one-line message.
+TEST(Answer, RefusalsAreOneLine) {
+  const InvalidInput e("body.part[0].na\nme\x1b[31m", "unknown key 'a\nb'");
+  EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  EXPECT_EQ(std::string(e.what()).find('\x1b'), std::string::npos);
+  EXPECT_EQ(e.key(), "body.part[0].na\\nme\\x1b[31m");
+}
+
 }  // namespace
 }  // namespace heavytop

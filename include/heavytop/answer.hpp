@@ -38,7 +38,7 @@ enum class AnswerCase {
   NotFallen,           ///< not proven stable and it did not fall in the run
   FallsDamped,         ///< damped: the lifetime's run falls
   OutlivesHorizon,     ///< damped: it did not fall within the lifetime's horizon
-  RunStopped,          ///< damped: its motion could not be computed (Answer::stopped says why); nothing claimed
+  RunStopped,          ///< its motion could not be computed to the horizon (Answer::stopped says why, Answer::horizon how far it got); nothing claimed
 };
 
 /// Settings of answer_question().
@@ -50,8 +50,8 @@ struct AnswerOptions {
   /// s, the damped body's run (lifetime()'s horizon); nullopt: lifetime()'s default.
   std::optional<double> damped_horizon;
   Tolerances integrator;  ///< the nonlinear run's tolerances
-  /// True if every setting is in range; else false and "key: rule" in `why` (key "horizon" or
-  /// "max_tilt").
+  /// True if every setting is in range; else false and "key: rule" in `why` (key "horizon",
+  /// "max_tilt" or "lifetime_horizon").
   bool IsValid(std::string* why) const;
 };
 
@@ -69,12 +69,18 @@ struct Answer {
   /// rad, the largest tilt: the wander (SPEC 7) when proven stable, else the run's largest
   /// tilt (at the fall, the threshold's crossing); nullopt when it could not be computed.
   std::optional<double> max_tilt;
-  double fall_threshold = 1.0;      ///< rad, AnswerOptions::max_tilt
+  /// rad, the tilt past which it has fallen: fall_tilt(start_tilt, AnswerOptions::max_tilt),
+  /// the limit given or, for a start at or beyond it, halfway from the start to upside down
+  double fall_threshold = 1.0;
+  double limit_given = 1.0;         ///< rad, AnswerOptions::max_tilt
   std::optional<double> falls_at;   ///< s, the first time the tilt passes fall_threshold
   std::optional<double> fall_spin;  ///< rad/s, w.k at falls_at
   double horizon = 0.0;             ///< s, the horizon of the run that decided (or would have)
   /// rad/s, the smallest of the spins proven stable (Lyapunov), nullopt when none.
   std::optional<double> min_spin;
+  /// false when min_spin itself is not stable (the interval is open there: a body without
+  /// gravity is stable at every spin > 0, but at rest any push turns its axis away)
+  bool min_spin_included = true;
   /// true when every spin below min_spin is unstable (a symmetric top's sharp threshold C^2 w0^2
   /// = 4 A m g R: "below it, it would fall"); false when below it stability is only unproven.
   bool falls_below_min_spin = false;
@@ -86,7 +92,7 @@ struct Answer {
   bool hanging = false;             ///< the centre of mass is below the pivot (length < 0)
   /// rad/s, for a damped body: the critical spin its spin decays to (lifetime's), nullopt else.
   std::optional<double> critical_spin;
-  /// Why a damped body's run stopped before deciding (AnswerCase::RunStopped; the integrator's
+  /// Why the deciding run stopped before its horizon (AnswerCase::RunStopped; the integrator's
   /// one-line failure, e.g. too many steps for damping this strong), empty otherwise.
   std::string stopped;
 };
@@ -94,9 +100,11 @@ struct Answer {
 /// The answer for `body` started in `initial`, from the Lyapunov analysis at the spin and the
 /// wander (what `stability` computes, passed in so it is computed once) and, where they do not
 /// decide, a nonlinear run: tilt_extremes over options.horizon for the conservative body,
-/// lifetime() for a damped one. Throws InvalidInput for bad options; never throws for a failed
-/// run (the answer is then "stays up for the horizon" with max_tilt empty; for a damped body
-/// AnswerCase::RunStopped, its words saying that nothing was decided and why).
+/// lifetime() for a damped one. Throws InvalidInput for bad options (a horizon beyond
+/// longest_meaningful_time() among them: key "horizon", or "lifetime_horizon" for the damped
+/// body's); never throws for a run that cannot go on (RunFailure: the answer is then "stays up
+/// for the horizon", AnswerCase::RunStopped, max_tilt empty and horizon the time it reached, its
+/// words saying that nothing was decided and why).
 Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
                        const Wander& wander, const AnswerOptions& options = {});
 

@@ -4,13 +4,20 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "heavytop/damping.hpp"
 
 namespace heavytop {
 
+/// Text from the user (a path, a key, a field of a file) as it goes into a one-line message:
+/// control characters shown escaped (\n, \x01); idempotent.
+std::string printable(std::string_view text);
+
 /// Bad user input. Names the offending key (as spelled in the configuration file,
-/// e.g. "body.mass") and the rule it breaks; the CLI prints it on one line and exits 2.
+/// e.g. "body.mass") and the rule it breaks; the CLI prints it on one line and exits 2. Both are
+/// kept printable() (a key or a value from a file may hold a newline or an escape sequence), so
+/// the message is one line whatever text went into it.
 class InvalidInput : public std::invalid_argument {
  public:
   InvalidInput(std::string key, std::string rule);

@@ -30,6 +30,9 @@ struct LifetimeOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// Throws InvalidInput for the first setting out of range (LifetimeOptions::IsValid's keys).
+void validate(const LifetimeOptions& options);
+
 /// s, the horizon when neither the options nor the spin law give one (SPEC section 8).
 inline constexpr double kDefaultLifetimeHorizon = 1000.0;
 
@@ -49,7 +52,10 @@ struct Lifetime {
   std::optional<double> fall_time;
   /// rad/s, the integrated w.k at the fall (nullopt with fall_time).
   std::optional<double> fall_spin;
-  double max_tilt = 1.0;  ///< rad, the threshold used
+  /// rad, the threshold used: LifetimeOptions::max_tilt, or past a start at or beyond it
+  /// halfway from the start to upside down (fall_tilt(), nonlinear.hpp)
+  double max_tilt = 1.0;
+  double limit_given = 1.0;  ///< rad, LifetimeOptions::max_tilt
   double horizon = 0.0;   ///< s, the horizon used
   double largest_tilt = 0.0;  ///< rad, the largest tilt seen (the fall's threshold if it fell)
   NonlinearSummary summary;   ///< what the nonlinear run did

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,16 @@ TiltExtremes tilt_extremes(const Body& body, const InitialState& initial, double
                            double stop_above = std::numeric_limits<double>::infinity(),
                            const Tolerances& options = {},
                            NonlinearSummary* summary = nullptr, const Progress& progress = {});
+
+/// rad, the tilt past which a top started at `start_tilt` (rad) has fallen, for the limit
+/// `max_tilt` (rad, in (0, pi]) the person gave: a fall is a tilt past max_tilt from below, so a
+/// start below it keeps it; a start at or beyond it (Woodhouse's top set off at 60 degrees, with
+/// the default 1 rad) would "fall" at t = 0 whatever it does next, so its fall is a tilt past
+/// halfway from its start to upside down, (start_tilt + pi) / 2. The answer and lifetime() use
+/// it and say so; a sweep, whose map holds every point to one limit, refuses such a start.
+inline double fall_tilt(double start_tilt, double max_tilt) {
+  return start_tilt < max_tilt ? max_tilt : 0.5 * (start_tilt + std::numbers::pi);
+}
 
 /// rad, the largest tilt acos(k_zeta) over [0, horizon] (s), stopping early once it exceeds
 /// `stop_above` (rad; the result is then > stop_above). For stability sweeps.

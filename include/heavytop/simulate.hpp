@@ -102,6 +102,9 @@ struct SimulateOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// Throws InvalidInput for the first setting out of range (SimulateOptions::IsValid's keys).
+void validate(const SimulateOptions& options);
+
 /// One option of a SimulateRequest: its value if the person gave one (on the command line or
 /// in its configuration file; as a keyword argument in Python), and whether they asked for it
 /// for this run (a flag or a keyword argument: the rules of what applies to which model check

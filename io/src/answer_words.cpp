@@ -36,8 +36,20 @@ std::string start_words(const Answer& a) {
 
 }  // namespace
 
-std::string answer_advice(const Answer& a) {
-  if (a.why == AnswerCase::RunStopped) {  // no lifetime run: what the conservative analysis says
+namespace {
+
+/// What a fall means for a start at or beyond the limit given (fall_tilt()), else "".
+std::string limit_words(const Answer& a) {
+  if (a.fall_threshold == a.limit_given) return "";
+  if (a.start_tilt >= std::numbers::pi * (1.0 - 1e-12))
+    return "It started upside down, below its pivot: it has no further to fall. ";
+  return fmt::format("It started beyond the {} limit of a fall, so a fall here is a tilt past {}, halfway from its "
+                     "start to upside down. ",
+                     angle_words(a.limit_given), angle_words(a.fall_threshold));
+}
+
+std::string spin_advice(const Answer& a) {
+  if (a.why == AnswerCase::RunStopped && a.damped) {  // no lifetime run: what the conservative analysis says
     if (!a.min_spin) return "Without damping no spin is proven to hold it up.";
     return a.falls_below_min_spin
                ? fmt::format("Without damping it needs at least {} to stay up (the critical spin).", spin_words(*a.min_spin))
@@ -51,6 +63,8 @@ std::string answer_advice(const Answer& a) {
     return "No spin holds it up, even without damping.";
   }
   if (!a.min_spin) return "No spin is proven to hold it up.";
+  if (*a.min_spin == 0.0 && !a.min_spin_included)
+    return "It is stable at every spin above 0; at rest it is not (any push turns its axis away for good).";
   if (*a.min_spin == 0.0) return a.hanging ? "It hangs stably at every spin, even at rest." : "It is stable at every spin.";
   if (a.verdict == AnswerVerdict::StaysUp)
     return a.falls_below_min_spin ? fmt::format("Below {} it would fall.", spin_words(*a.min_spin))
@@ -58,6 +72,10 @@ std::string answer_advice(const Answer& a) {
   return a.falls_below_min_spin ? fmt::format("It needs at least {} to stay up.", spin_words(*a.min_spin))
                                 : fmt::format("From {} up it is proven stable.", spin_words(*a.min_spin));
 }
+
+}  // namespace
+
+std::string answer_advice(const Answer& a) { return limit_words(a) + spin_advice(a); }
 
 std::string answer_headline(const Answer& a) {
   switch (a.why) {
@@ -113,9 +131,10 @@ std::string answer_reason(const Answer& a) {
                          spin_words(a.spin), time_words(a.falls_at.value_or(0.0)), fall,
                          spin_words(a.fall_spin.value_or(0.0)));
     case AnswerCase::RunStopped:
-      return fmt::format("With its damping, spinning at {}, the motion of {} could not be computed far enough to "
+      return fmt::format("{}, spinning at {}, the motion of {} could be computed only to t = {}, not far enough to "
                          "say whether it falls ({}).",
-                         spin_words(a.spin), body, a.stopped);
+                         a.damped ? "With its damping" : fmt::format("Started {} off vertical", angle_words(a.start_tilt)),
+                         spin_words(a.spin), body, time_words(a.horizon), a.stopped);
     case AnswerCase::OutlivesHorizon: break;
   }
   std::string s = fmt::format("With its damping, spinning at {}, {} did not tilt past {} within the {} computed",

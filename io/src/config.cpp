@@ -49,20 +49,6 @@ std::vector<std::string> keys_starting(std::string_view prefix) {
 
 }  // namespace
 
-std::string printable(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u != 0x7f) out += c;
-    else if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c == '\r') out += "\\r";
-    else out += fmt::format("\\x{:02x}", u);
-  }
-  return out;
-}
-
 namespace {
 
 double number_of(const toml::node& node, const std::string& key) {

@@ -417,6 +417,10 @@ std::string lifetime_text(const Body& body, const InitialState& initial, const L
                                        life.max_tilt * 180.0 / M_PI)
                          : fmt::format("Stays up for the {:.4g} s computed (its tilt stays below {:.3g} degrees).\n",
                                        life.horizon, life.max_tilt * 180.0 / M_PI));
+  if (life.max_tilt != life.limit_given)
+    out << fmt::format("It started beyond the {:.3g} degree limit of a fall, so a fall here is a tilt past {:.3g} "
+                       "degrees, halfway from its start to upside down.\n",
+                       life.limit_given * 180.0 / M_PI, life.max_tilt * 180.0 / M_PI);
   out << fmt::format("Spin {} with axial damping d_a = {:g} N m s, friction tau0 = {:g} N m, transverse "
                      "damping d_t = {:g} N m s{}.\n",
                      spin_text(initial.spin), d.axial, d.friction, d.transverse,

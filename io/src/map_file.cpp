@@ -90,11 +90,15 @@ std::string cell_shown(std::string_view cell) {
 
 /// Throws InvalidInput unless a map's axis key is one a sweep varies: a key becomes the
 /// report's axis labels (in gnuplot scripts) and Python's names, so a file's own text must not
-/// (issue 46: a key holding a quote and system('...') ran a command in gnuplot).
-void check_axis_key(std::string_view axis_key, const std::string& key) {
+/// (issue 46: a key holding a quote and system('...') ran a command in gnuplot); nor one of the
+/// `earlier` axes' keys (a sweep varies each key once: two axes of one key name no grid).
+void check_axis_key(std::string_view axis_key, const std::vector<std::string>& earlier, const std::string& key) {
   if (!is_sweep_key(axis_key))
     throw InvalidInput(key, fmt::format("the axis key '{}' is not one a sweep varies (a map's keys are among {})",
                                         cell_shown(axis_key), sweep_keys_text()));
+  if (std::find(earlier.begin(), earlier.end(), axis_key) != earlier.end())
+    throw InvalidInput(key, fmt::format("the axis key '{}' is there twice (a sweep varies each key once)",
+                                        cell_shown(axis_key)));
 }
 
 /// The axes (keys and values, exact) of rows whose first columns are a row-major grid.
@@ -148,7 +152,7 @@ StabilityMap read_map_csv(const std::string& text, const std::string& key) {
       text.substr(0, eol + 1) != sweep_csv_header(named, nonlinear, tolerance))
     throw InvalidInput(key, "not a sweep's CSV: the header must be 1 to 3 varied keys, then " +
                                 std::string(sweep_csv_header({}, nonlinear).substr(0, sweep_csv_header({}, nonlinear).size() - 1)));
-  for (const auto& k : keys) check_axis_key(k, key);
+  for (std::size_t k = 0; k < keys.size(); ++k) check_axis_key(keys[k], {keys.begin(), keys.begin() + k}, key);
   std::vector<std::vector<double>> values;
   std::vector<SweepVerdict> verdicts;
   std::size_t row = 1;
@@ -569,6 +573,7 @@ StabilityMap read_map_hdf5(const std::string& path, const std::string& key, std:
   };
   StabilityMap map;
   std::size_t points = 1;
+  std::vector<std::string> keys;
   for (std::uint64_t k = 0; k < n_axes; ++k) {
     const std::string name = fmt::format("axes/{}", k);
     const Handle d(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
@@ -577,7 +582,8 @@ StabilityMap read_map_hdf5(const std::string& path, const std::string& key, std:
     read_attribute(d, "count", H5T_NATIVE_UINT64, &count);
     if (count < 1 || count > kMaxSweepPoints) throw InvalidInput(key, bad + " (an axis' count)");
     MapAxis axis{.key = read_text(d, "key"), .values = {}};
-    check_axis_key(axis.key, key);
+    check_axis_key(axis.key, keys, key);
+    keys.push_back(axis.key);
     read_column(name, H5T_NATIVE_DOUBLE, count, axis.values);
     points *= count;
     if (points > kMaxSweepPoints) throw InvalidInput(key, bad + " (too many points)");

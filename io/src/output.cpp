@@ -169,7 +169,7 @@ OutputStream::OutputStream(std::string path, std::string key) : path_(std::move(
   if (!file_) {
     ::close(fd);
     ::unlink(temporary_.c_str());
-    throw Failure(fmt::format("{}: cannot write '{}'", key_, path_));
+    throw Failure(fmt::format("{}: cannot write '{}'", key_, printable(path_)));
   }
   owns_file_ = true;
 }
@@ -185,7 +185,7 @@ OutputStream::~OutputStream() {
 void OutputStream::write(std::string_view text) {
   if (text.empty()) return;
   if (std::fwrite(text.data(), 1, text.size(), file_) != text.size())
-    throw Failure(fmt::format("{}: cannot write '{}': {}", key_, path_.empty() ? "stdout" : path_, std::strerror(errno)));
+    throw Failure(fmt::format("{}: cannot write '{}': {}", key_, path_.empty() ? "stdout" : printable(path_), std::strerror(errno)));
 }
 
 void OutputStream::commit() {

@@ -16,7 +16,7 @@ detail::Violation first_violation(const AnswerOptions& o) {
   if (!(std::isfinite(o.horizon) && o.horizon > 0.0)) return std::pair{"horizon", "must be a finite number > 0"};
   if (!(o.max_tilt > 0.0 && o.max_tilt <= std::numbers::pi)) return std::pair{"max_tilt", "must be in (0, pi]"};
   if (o.damped_horizon && !(std::isfinite(*o.damped_horizon) && *o.damped_horizon > 0.0))
-    return std::pair{"horizon", "must be a finite number > 0"};
+    return std::pair{"lifetime_horizon", "must be a finite number > 0"};
   return std::nullopt;
 }
 
@@ -30,11 +30,33 @@ bool at_rest_upright(const InitialState& s) {
 void spin_threshold(const Body& body, const LyapunovStability& lyapunov, Answer& a) {
   if (lyapunov.intervals.empty()) return;
   a.min_spin = lyapunov.intervals.front().lo;
+  a.min_spin_included = lyapunov.intervals.front().lo_included;
   if (*a.min_spin <= 0.0 || !is_symmetric(body) || !(body.mgR() > 0.0)) return;
   // Just below the end (a root of the closed form, exact to rounding), where the verdict is
   // no longer the boundary's.
   const double below = *a.min_spin * (1.0 - 1e-6);
   a.falls_below_min_spin = lyapunov_stability(body, below).verdict == LyapunovVerdictKind::Unstable;
+}
+
+/// lifetime() for the answer: its horizon is the answer's "lifetime_horizon" (`stability
+/// --lifetime-horizon`), so a refused one is named so, not "horizon" (the conservative run's).
+Lifetime lifetime_named(const Body& body, const InitialState& initial, const LifetimeOptions& options) {
+  try {
+    return lifetime(body, initial, options);
+  } catch (const InvalidInput& e) {
+    if (e.key() == "horizon") throw InvalidInput("lifetime_horizon", e.rule());
+    throw;
+  }
+}
+
+/// The run that decides could not go on: nothing is claimed, the horizon is how far it got, and
+/// the words say why (AnswerCase::RunStopped).
+void stopped(const RunFailure& failure, Answer& a) {
+  a.verdict = AnswerVerdict::StaysUpForHorizon;
+  a.why = AnswerCase::RunStopped;
+  a.horizon = failure.reached();
+  a.max_tilt.reset();
+  a.stopped = failure.what();
 }
 
 }  // namespace
@@ -65,7 +87,8 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
   Answer a;
   a.spin = initial.spin;
   a.start_tilt = tilt(initial.theta0, initial.phi0);
-  a.fall_threshold = options.max_tilt;
+  a.fall_threshold = fall_tilt(a.start_tilt, options.max_tilt);
+  a.limit_given = options.max_tilt;
   a.horizon = options.horizon;
   a.hanging = body.length < 0.0;
   a.damped = !body.damping.conservative();
@@ -77,7 +100,7 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
     life_options.max_tilt = options.max_tilt;
     life_options.integrator = options.integrator;
     try {
-      const Lifetime life = lifetime(body, initial, life_options);
+      const Lifetime life = lifetime_named(body, initial, life_options);
       a.horizon = life.horizon;
       a.critical_spin = life.critical_spin;
       a.max_tilt = life.largest_tilt;
@@ -91,18 +114,16 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
         a.verdict = AnswerVerdict::StaysUpForHorizon;
         a.why = AnswerCase::OutlivesHorizon;
       }
-    } catch (const InvalidInput&) {
-      throw;
-    } catch (const std::exception& e) {
-      a.verdict = AnswerVerdict::StaysUpForHorizon;  // the run failed: nothing is claimed, the words say so
-      a.why = AnswerCase::RunStopped;
-      a.horizon = life_options.horizon.value_or(0.0);
-      a.stopped = e.what();
+    } catch (const RunFailure& e) {
+      stopped(e, a);
     }
     return a;
   }
 
-  if (lyapunov.verdict.verdict == LyapunovVerdictKind::Stable) {
+  // The proof bounds the tilt by the wander: it proves no fall only where that bound is short
+  // of the fall's tilt (a start upside down, or a slow stable spin that wanders past the limit,
+  // is followed instead).
+  if (lyapunov.verdict.verdict == LyapunovVerdictKind::Stable && (!wander.max_tilt || *wander.max_tilt < a.fall_threshold)) {
     a.verdict = AnswerVerdict::StaysUp;
     a.why = AnswerCase::ProvenStable;
     a.proven = true;
@@ -119,9 +140,12 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
     return a;
   }
   a.why = AnswerCase::NotFallen;
+  // A horizon a double cannot resolve is refused before the run (1e300 s ran until max_steps
+  // gave up), only here: where no run is needed it does no harm (a spin of 1e19 rad/s is proven).
+  validate_horizon(body, initial, options.horizon, "horizon");
   try {
     const TiltExtremes run =
-        tilt_extremes(Integrator::Dopri5, body, initial, options.horizon, options.max_tilt, options.integrator);
+        tilt_extremes(Integrator::Dopri5, body, initial, options.horizon, a.fall_threshold, options.integrator);
     a.max_tilt = run.max_tilt;
     if (run.exceeded) {
       a.verdict = AnswerVerdict::Falls;
@@ -130,17 +154,15 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
       a.falls_at = run.t_end;
       a.fall_spin = run.spin_at_end;
     }
-  } catch (const InvalidInput&) {
-    throw;
-  } catch (const std::exception&) {
-    a.max_tilt.reset();  // the run failed: not fallen as far as is known, nothing claimed
+  } catch (const RunFailure& e) {
+    stopped(e, a);
   }
   return a;
 }
 
 TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options) {
   validate(initial);
-  detail::throw_if_invalid(first_violation(options));
+  validate(options);
   TopAnalysis t;
   t.spin = initial.spin;
   t.models = analyse_stability(body, initial.spin);

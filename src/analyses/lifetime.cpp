@@ -25,12 +25,16 @@ bool LifetimeOptions::IsValid(std::string* why) const {
   return detail::is_valid(first_violation(*this), why) && integrator.IsValid(why);
 }
 
+void validate(const LifetimeOptions& options) {
+  detail::throw_if_invalid(first_violation(options));
+  validate(options.integrator);
+}
+
 Lifetime spin_decay(const Body& body, const InitialState& initial, const LifetimeOptions& options) {
   validate(body);
   refuse_general(body, "lifetime");
   validate(initial);
-  detail::throw_if_invalid(first_violation(options));
-  validate(options.integrator);
+  validate(options);
 
   Lifetime life;
   Body conservative = body;
@@ -45,7 +49,8 @@ Lifetime spin_decay(const Body& body, const InitialState& initial, const Lifetim
   // A horizon given beyond what a double resolves is refused before the run, as simulate's
   // --t-end is (1e300 s ran until --max-steps gave up).
   if (options.horizon) validate_horizon(body, initial, *options.horizon, "horizon");
-  life.max_tilt = options.max_tilt;
+  life.max_tilt = fall_tilt(tilt(initial.theta0, initial.phi0), options.max_tilt);
+  life.limit_given = options.max_tilt;
   life.horizon = options.horizon ? *options.horizon
                  : life.time_to_critical && *life.time_to_critical > 0.0 ? 10.0 * *life.time_to_critical
                                                                           : kDefaultLifetimeHorizon;
@@ -60,13 +65,13 @@ Lifetime spin_decay(const Body& body, const InitialState& initial, const Lifetim
 Lifetime lifetime(const Body& body, const InitialState& initial, const LifetimeOptions& options,
                   const Progress& progress) {
   Lifetime life = spin_decay(body, initial, options);
-  const TiltExtremes e = tilt_extremes(options.method, body, initial, life.horizon, options.max_tilt, options.integrator,
+  const TiltExtremes e = tilt_extremes(options.method, body, initial, life.horizon, life.max_tilt, options.integrator,
                                         &life.summary, progress);
   life.largest_tilt = e.max_tilt;
   if (e.exceeded) {
     life.fall_time = e.t_end;
     life.fall_spin = e.spin_at_end;
-    life.largest_tilt = options.max_tilt;
+    life.largest_tilt = life.max_tilt;
   }
   return life;
 }

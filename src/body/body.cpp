@@ -10,8 +10,22 @@
 
 namespace heavytop {
 
+std::string printable(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) out += c;
+    else if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c == '\r') out += "\\r";
+    else out += fmt::format("\\x{:02x}", u);
+  }
+  return out;
+}
+
 InvalidInput::InvalidInput(std::string key, std::string rule)
-    : std::invalid_argument(key + ": " + rule), key_(std::move(key)), rule_(std::move(rule)) {}
+    : std::invalid_argument(printable(key) + ": " + printable(rule)), key_(printable(key)), rule_(printable(rule)) {}
 
 namespace {
 

@@ -65,19 +65,19 @@ inline void validate_times(const std::vector<double>& times) {
 // a step size lost in the rounding of t (the tolerance cannot be met), a state no longer finite.
 enum class StepOutcome { MaxSteps, StepUnderflow, NotFinite };
 
-// Throws the one-line failure of integrator `who` ("nonlinear", "taylor", "dop853") at t (s),
+// Throws the one-line failure (RunFailure, with t as how far the run got) of integrator `who` ("nonlinear", "taylor", "dop853") at t (s),
 // the one message formatter of every integrator; `max_steps` is the limit passed (MaxSteps).
 [[noreturn, gnu::cold]] inline void fail(const char* who, StepOutcome outcome, double t, std::size_t max_steps = 0) {
   switch (outcome) {
     case StepOutcome::MaxSteps:
-      throw std::runtime_error(fmt::format("{}: more than max_steps = {} integration steps before t = {:.6g} s "
-                                           "(raise max_steps or loosen rtol/atol)", who, max_steps, t));
+      throw RunFailure(fmt::format("{}: more than max_steps = {} integration steps before t = {:.6g} s "
+                                   "(raise max_steps or loosen rtol/atol)", who, max_steps, t), t);
     case StepOutcome::StepUnderflow:
-      throw std::runtime_error(
-          fmt::format("{}: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", who, t));
+      throw RunFailure(
+          fmt::format("{}: step size underflow at t = {:.6g} s (the tolerance rtol/atol cannot be met)", who, t), t);
     case StepOutcome::NotFinite: break;
   }
-  throw std::runtime_error(fmt::format("{}: the state stopped being finite at t = {:.6g} s", who, t));
+  throw RunFailure(fmt::format("{}: the state stopped being finite at t = {:.6g} s", who, t), t);
 }
 
 // ---- One step of Odeint's controlled dopri5 (nonlinear.cpp, general_body.cpp) ----------------

@@ -112,10 +112,10 @@ class Dopri5Driver {
     const double longest = 6.62 / rate;  // s
     const double left = (horizon_ - t_) / longest;
     if (!(double(attempts_) + left > double(max_steps_))) return;
-    throw std::runtime_error(fmt::format(
+    throw RunFailure(fmt::format(
         "nonlinear: the damping makes this motion stiff: dopri5's step stays below about {:.3g} s, so reaching "
         "t = {:.6g} s needs more than {:.3g} steps, beyond max_steps = {} (stopped at t = {:.6g} s after {} steps)",
-        longest, horizon_, double(attempts_) + left, max_steps_, t_, attempts_));
+        longest, horizon_, double(attempts_) + left, max_steps_, t_, attempts_), t_);
   }
 
   void interpolate_step(double t, State& out) const {

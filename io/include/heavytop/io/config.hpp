@@ -94,9 +94,8 @@ inline constexpr std::size_t kMaxConfigurationBytes = 1 << 20;
 /// with contact = "pivot", and friction or friction_law with a contact other than "sliding".
 Table table_of(const Configuration& config);
 
-/// Text from the user (a path, a key, a field of a file) as it goes into a one-line message:
-/// control characters shown escaped (\n, \x01).
-std::string printable(std::string_view text);
+/// Text from the user as it goes into a one-line message (body.hpp's, for io's callers).
+using heavytop::printable;
 
 /// The content of the file `path`, at most `max_bytes` (more is refused, so a device such as
 /// /dev/zero is bad input, not an endless read). Throws InvalidInput naming `path_key` when it

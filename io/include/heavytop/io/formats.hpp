@@ -35,7 +35,8 @@ std::string stability_text(const Body& body, const TopAnalysis& analysis);
 /// The answer (SPEC section 14) in words, for people: answer_headline() ("Stays up.", "Falls.",
 /// ...), answer_reason() (one sentence: the JSON's "reason"), and answer_text(), the
 /// paragraph every person-facing output opens with (headline, reason, and answer_advice(): what
-/// the spin must be, or the critical spin of a damped body).
+/// a fall means for a start beyond the limit given, then what the spin must be, or the critical
+/// spin of a damped body).
 /// Spins in rad/s and rpm, angles in degrees and rad, times in s.
 std::string answer_headline(const Answer& answer);
 std::string answer_reason(const Answer& answer);
