@@ -3,8 +3,11 @@
 // (--config and every option of `heavytop stability`: the body, the motion, the damping with
 // --driven, the table, the answer's --horizon, --max-tilt and --lifetime-horizon; the built-in
 // toy top without them). The page is built by Emscripten (web/, the CMake target heavytop_web);
-// this command copies it (report::explorer_page(), which every report's explore.html comes from
-// too) with the whole configuration as the page's start (window.HEAVYTOP_CONFIG).
+// this command copies it (report::explorer_page(), which every report's explore.html and
+// Python's explore() come from too: window.HEAVYTOP_INITIAL, the body and motion) with, when the
+// configuration holds more than those (a motor, the table, the tip's or rim's radius, the
+// answer's options), the whole configuration as the page's start (window.HEAVYTOP_CONFIG; else
+// it stays null and the page is byte for byte Python's explore()).
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -61,6 +64,14 @@ std::string page_start(const Inputs& inputs, const ExploreAnswerOptions& o) {
   return text;
 }
 
+// True if the page's start holds more than HEAVYTOP_INITIAL's body, damping and motion.
+bool beyond_initial(const Inputs& inputs, const ExploreAnswerOptions& o) {
+  const Body& b = inputs.body();
+  return b.damping.driven || b.tip_radius != 0.0 || b.rim_radius != 0.0 || inputs.table().on_table() ||
+         o.horizon != ExploreAnswerOptions{}.horizon || o.max_tilt != ExploreAnswerOptions{}.max_tilt ||
+         o.lifetime_horizon.has_value();
+}
+
 }  // namespace
 
 Action add_explore_command(CLI::App& app) {
@@ -91,7 +102,7 @@ Action add_explore_command(CLI::App& app) {
     const std::string mark = "/*HEAVYTOP_CONFIG*/null";
     const auto at = page->find(mark);
     if (at == std::string::npos) throw Failure("explore: the explorer page has no place for its start (HEAVYTOP_CONFIG)");
-    page->replace(at, mark.size(), page_start(*inputs, *o));
+    if (beyond_initial(*inputs, *o)) page->replace(at, mark.size(), page_start(*inputs, *o));
     write_output(inputs->output(), *page);  // "-": stdout (SPEC section 1)
   };
 }

@@ -300,9 +300,12 @@ async function explorePage(browser, name, args) {
 async function exploreStart(page, args) {
   const made = spawnSync(heavytop, ["explore", ...args, "--output", "-"], { encoding: "utf8", maxBuffer: 1 << 26 });
   if (made.status !== 0) return { error: `heavytop explore ${args.join(" ")}: exit ${made.status}: ${made.stderr.trim()}` };
+  // The whole configuration, or (when it holds no more than the body and motion) HEAVYTOP_INITIAL.
   const m = /window\.HEAVYTOP_CONFIG = (\{.*?\});<\/script>/.exec(made.stdout);
-  if (!m) return { error: `heavytop explore ${args.join(" ")}: no HEAVYTOP_CONFIG in the page` };
-  const thrown = await page.evaluate((start) => { try { heavytopExplorer.open(start, false); return null; } catch (e) { return String(e); } }, JSON.parse(m[1]));
+  const initial = /window\.HEAVYTOP_INITIAL = (\{.*?\});<\/script>/.exec(made.stdout);
+  if (!m && !initial) return { error: `heavytop explore ${args.join(" ")}: no start in the page` };
+  const start = m ? JSON.parse(m[1]) : { config: JSON.parse(initial[1]) };
+  const thrown = await page.evaluate((st) => { try { heavytopExplorer.open(st, false); return null; } catch (e) { return String(e); } }, start);
   const shown = await pageState(page);
   if (thrown) shown.error = thrown;
   shown.errors = [];
