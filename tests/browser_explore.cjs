@@ -389,7 +389,19 @@ async function checkTable(browser) {
     check(`${example}: the 3D view draws it on the table with P's track`, /on the table/.test(view.note) && view.follow, `${view.note} ${JSON.stringify(view.shapes)}`);
     check(`${example}: the tilt is plotted over the motion on the table`, /on the table/.test(view.motion), view.motion);
     check(`${example}: no page error`, shown.errors.length === 0, shown.errors.join(" | "));
-    if (example === "tippe-top") await shown.page.screenshot({ path: path.join(work, "explore-table.png"), fullPage: true });
+    if (example === "tippe-top") {  // paused past the turn-over, P's track drawn so far
+      await shown.page.evaluate(() => {
+        if (window.heavytopView && window.heavytopView.time !== undefined) {
+          const play = document.getElementById("play");
+          if (play.textContent === "Pause") play.click();
+          const scrub = document.getElementById("scrub");
+          scrub.value = "7000";
+          scrub.dispatchEvent(new Event("input", { bubbles: true }));
+        }
+      });
+      await new Promise((r) => setTimeout(r, 500));
+      await shown.page.screenshot({ path: path.join(work, "explore-table.png"), fullPage: true });
+    }
     await shown.page.close();
   }
 }
