@@ -1,28 +1,109 @@
 // heavytop explore: the explorer page (SPEC section 15), one self-contained HTML file with the
-// core compiled to WebAssembly inside it, its inputs starting at the body and motion given here
-// (--config and the body options; the built-in toy top without them). The page is built by
-// Emscripten (web/, the CMake target heavytop_web); this command copies it with that start
-// (report::explorer_page(), which every report's explore.html comes from too).
+// core compiled to WebAssembly inside it, its inputs starting at the configuration given here
+// (--config and every option of `heavytop stability`: the body, the motion, the damping with
+// --driven, the table, the answer's --horizon, --max-tilt and --lifetime-horizon; the built-in
+// toy top without them). The page is built by Emscripten (web/, the CMake target heavytop_web);
+// this command copies it (report::explorer_page(), which every report's explore.html and
+// Python's explore() come from too: window.HEAVYTOP_INITIAL, the body and motion) with, when the
+// configuration holds more than those (a motor, the table, the tip's or rim's radius, the
+// answer's options), the whole configuration as the page's start (window.HEAVYTOP_CONFIG; else
+// it stays null and the page is byte for byte Python's explore()).
+#include <cmath>
 #include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "heavytop/io/formats.hpp"
 #include "heavytop/report/report.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::cli {
+namespace {
+
+struct ExploreAnswerOptions {
+  double horizon = 100.0;  // stability's defaults (AnswerOptions)
+  double max_tilt = 1.0;
+  std::optional<double> lifetime_horizon;
+};
+
+// The page's start: the configuration's sections as the page's window.heavytop takes them
+// ({body, motion, damping, table}) and the answer's options ({horizon, max_tilt,
+// lifetime_horizon}: stability's flags), as JSON that a <script> holds.
+std::string page_start(const Inputs& inputs, const ExploreAnswerOptions& o) {
+  using nlohmann::json;
+  const Body& b = inputs.body();
+  const InitialState& s = inputs.state();
+  const Table& t = inputs.table();
+  json config;
+  config["body"] = {{"A", b.A},         {"B", b.B},
+                    {"C", b.C},         {"mass", b.mass},
+                    {"gravity", b.gravity}, {"length", b.length},
+                    {"tip_radius", b.tip_radius}, {"rim_radius", b.rim_radius}};
+  config["motion"] = {{"spin", s.spin},           {"theta0", s.theta0},       {"phi0", s.phi0},
+                      {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}, {"driven", b.damping.driven}};
+  config["damping"] = {{"transverse", b.damping.transverse}, {"axial", b.damping.axial},
+                       {"friction", b.damping.friction}};
+  if (t.on_table()) {  // [table]: its other keys only where the contact takes them (io::table_of)
+    json table = {{"contact", std::string(name(t.contact))}};
+    if (t.contact == Contact::Sliding) {
+      table["friction"] = t.friction;
+      table["friction_law"] = std::string(name(t.friction_law));
+      if (t.friction_law == FrictionLaw::Viscous) table["slip_speed"] = t.slip_speed;
+    }
+    config["table"] = table;
+  }
+  json stability = {{"horizon", o.horizon}, {"max_tilt", o.max_tilt}};
+  if (o.lifetime_horizon) stability["lifetime_horizon"] = *o.lifetime_horizon;
+  std::string text = json{{"config", config}, {"stability", stability}}.dump();
+  // Inside a <script>: no "</" (a string of the file could hold "</script>").
+  for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3) text.replace(at, 2, "<\\/");
+  return text;
+}
+
+// True if the page's start holds more than HEAVYTOP_INITIAL's body, damping and motion.
+bool beyond_initial(const Inputs& inputs, const ExploreAnswerOptions& o) {
+  const Body& b = inputs.body();
+  return b.damping.driven || b.tip_radius != 0.0 || b.rim_radius != 0.0 || inputs.table().on_table() ||
+         o.horizon != ExploreAnswerOptions{}.horizon || o.max_tilt != ExploreAnswerOptions{}.max_tilt ||
+         o.lifetime_horizon.has_value();
+}
+
+}  // namespace
 
 Action add_explore_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "explore", "Write the explorer page: one self-contained HTML file (the core in WebAssembly) that answers any "
                  "body and spin live in a browser, from file:// with no network");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"});
-  return [inputs] {
+  InputUses uses;
+  uses.table = true;  // the page answers a top on a table as `stability` does (SPEC section 16)
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"}, uses);
+  auto o = std::make_shared<ExploreAnswerOptions>();
+  // stability's answer options, which the page's answer uses (as `heavytop stability` does).
+  cmd->add_option("--horizon", o->horizon, "s, how long the page's answer follows the nonlinear body (stability's --horizon)")
+      ->default_str("100");
+  cmd->add_option("--lifetime-horizon", o->lifetime_horizon,
+                  "s, a damped body's run in the page's answer (stability's --lifetime-horizon)");
+  cmd->add_option("--max-tilt", o->max_tilt, "rad, the tilt past which the page's answer says it fell (stability's --max-tilt)")
+      ->default_str("1");
+  return [inputs, o] {
     inputs->resolve();
-    if (inputs->output().empty() || inputs->output() == "-")
-      throw InvalidInput("--output", "give the page's file, e.g. --output explore.html");
-    const auto page = report::explorer_page(inputs->body(), inputs->state());
+    if (inputs->output().empty())
+      throw InvalidInput("--output", "give the page's file, e.g. --output explore.html (or - for stdout)");
+    if (!(std::isfinite(o->horizon) && o->horizon > 0.0)) throw InvalidInput("--horizon", "must be a finite number > 0");
+    if (!(o->max_tilt > 0.0 && o->max_tilt <= M_PI)) throw InvalidInput("--max-tilt", "must be in (0, pi]");
+    if (o->lifetime_horizon && !(std::isfinite(*o->lifetime_horizon) && *o->lifetime_horizon > 0.0))
+      throw InvalidInput("--lifetime-horizon", "must be a finite number > 0");
+    auto page = report::explorer_page(inputs->body(), inputs->state());
     if (!page) throw InvalidInput("explore", io::kExplorerPageMissing);
-    write_output(inputs->output(), *page);
+    const std::string mark = "/*HEAVYTOP_CONFIG*/null";
+    const auto at = page->find(mark);
+    if (at == std::string::npos) throw Failure("explore: the explorer page has no place for its start (HEAVYTOP_CONFIG)");
+    if (beyond_initial(*inputs, *o)) page->replace(at, mark.size(), page_start(*inputs, *o));
+    write_output(inputs->output(), *page);  // "-": stdout (SPEC section 1)
   };
 }
 

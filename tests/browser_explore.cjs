@@ -9,6 +9,11 @@
 // (1e-12), parts added and removed in the list give the command line's body of those parts; the
 // 3D view (WebGL, the report's) draws the mesh's own triangles and moves; a click on the map
 // shows that point's motion in it. Then the page's benchmarks (medians, the browser's clock).
+// Issues 42 and 46: every option of `heavytop stability` (from its --help) given to `heavytop
+// explore` gives the page stability's answer with that option; the table examples' answers
+// (headline, words, events) are stability's and the 3D view draws the table; simulate refuses
+// too many samples and the flags the page sets itself; malformed #config= links (some random)
+// start the page with a one-line message. HEAVYTOP_SHOW_TIMES=1 prints each check's time.
 // With REPORT_DIR (a folder `heavytop report` wrote): the report carries the explorer, which
 // opens inside it at the report's body and spin, and a map point's link opens there.
 // Exit 0 when all pass.
@@ -20,8 +25,10 @@ const { spawnSync } = require("child_process");
 
 const [chromium, heavytop, pageFile, work, examples, reportDir] = process.argv.slice(2);
 let failures = 0;
+const testStart = Date.now();
 function check(what, ok, detail = "") {
-  console.log(`${ok ? "ok  " : "FAIL"} ${what}${detail ? ": " + detail : ""}`);
+  const at = process.env.HEAVYTOP_SHOW_TIMES ? `[${((Date.now() - testStart) / 1000).toFixed(1)} s] ` : "";
+  console.log(`${ok ? "ok  " : "FAIL"} ${at}${what}${detail ? ": " + detail : ""}`);
   if (!ok) failures++;
   return ok;
 }
@@ -220,6 +227,262 @@ async function checkReport(browser) {
   check("the report with its explorer: no request leaves its folder", foreign.length === 0, foreign.join(" "));
   check("the report with its explorer: no console error", errors.length === 0, errors.join(" | "));
   await page.close();
+}
+
+// ---- every option of `heavytop stability` reaches the page (issue 46) ----------------------
+// The options are read from `heavytop stability --help` (the command line's own list, so a key
+// added there is tested here, or fails for want of a test value below). Each is given, with a
+// non-default value, to `heavytop explore`; the page it writes answers as `heavytop stability`
+// with the same option: its JSON to 1e-12 (integrated quantities 1e-6) and the answer's words.
+// The value must change stability's JSON (from BASE alone), or the equality would show nothing.
+const horizonOfTable = ["--horizon", "5"];  // a table's answer follows the motion: a short one
+const testValues = {
+  "--A": [[], "5e-5"], "--B": [[], "5e-5"], "--C": [[], "1.5e-5"], "--mass": [[], "0.07"], "--gravity": [[], "9.7"],
+  "--length": [[], "0.02"],
+  "--tip-radius": [["--contact", "frictionless", ...horizonOfTable], "0.004"],
+  "--rim-radius": [["--contact", "rolling", "--theta0", "0.3", ...horizonOfTable], "0.01"],
+  "--spin": [[], "150"], "--theta0": [[], "0.1"], "--phi0": [[], "0.05"], "--theta_rate0": [[], "0.5"],
+  "--phi_rate0": [[], "0.5"], "--spin-rpm": [[], "1500"],
+  "--transverse-damping": [[], "1e-7"], "--axial-damping": [[], "2e-6"], "--friction": [[], "1e-5"],
+  "--driven": [["--axial-damping", "2e-6"], "true"],
+  "--contact": [["--tip-radius", "0.002", ...horizonOfTable], "rolling"],
+  "--table-friction": [["--contact", "sliding", "--tip-radius", "0.002", ...horizonOfTable], "0.2"],
+  "--friction-law": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "coulomb"],
+  "--slip-speed": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "0.5"],
+  "--horizon": [["--spin", "100"], "20"], "--max-tilt": [["--spin", "60"], "0.5"],
+  "--lifetime-horizon": [["--axial-damping", "2e-6"], "50"],
+};
+function stabilityOptions() {
+  const help = spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout;
+  const names = [];
+  for (const line of help.split("\n")) {
+    const m = /^ {2}(?:-\w,)?(--[A-Za-z0-9_-]+)/.exec(line);
+    if (m && !["--help", "--config", "--format", "--output"].includes(m[1])) names.push(m[1]);
+  }
+  return names;
+}
+// The first paragraph of `heavytop stability` (text): the answer in words.
+const cliWords = (args) => {
+  const r = spawnSync(heavytop, ["stability", ...args], { encoding: "utf8" });
+  return r.status === 0 ? r.stdout.split("\n\n")[0] : `(exit ${r.status}) ${r.stderr.trim()}`;
+};
+const cliJson = (args) => {
+  const r = spawnSync(heavytop, ["stability", ...args, "--format", "json"], { encoding: "utf8" });
+  return r.status === 0 ? JSON.parse(r.stdout) : { error: r.stderr.trim() };
+};
+// What the page shows and holds now.
+const pageState = (page) => page.evaluate(() => {
+    const c = heavytopExplorer.current();
+    return { stability: c && c.stability, words: c && c.words, config: heavytopExplorer.config(), options: heavytopExplorer.options(),
+             headline: (document.querySelector("#answer .headline") || {}).textContent, error: document.getElementById("error").textContent,
+             notice: document.getElementById("notice").textContent };
+  });
+// `heavytop explore ARGS` into work/NAME.html, opened in a new tab; what the page shows and holds.
+async function explorePage(browser, name, args) {
+  const file = path.join(work, `${name}.html`);
+  const made = spawnSync(heavytop, ["explore", ...args, "--output", file], { encoding: "utf8" });
+  if (made.status !== 0) return { error: `heavytop explore ${args.join(" ")}: exit ${made.status}: ${made.stderr.trim()}` };
+  const page = await browser.newPage();
+  const errors = [];
+  page.on("pageerror", (err) => errors.push(String(err)));
+  page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+  await page.goto("file://" + file, { waitUntil: "load" });
+  await page.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 60000 });
+  const shown = await pageState(page);
+  shown.errors = errors;
+  shown.page = page;
+  return shown;
+}
+// `heavytop explore ARGS`'s start (the page's HEAVYTOP_CONFIG, as it wrote it) opened in `page`
+// as a load opens it (heavytopExplorer.open: the inputs and the answer; the motion and the 3D view
+// are the links' and the examples' tests): one page for many starts, a load each being seconds
+// on the loaded 2-core machine.
+async function exploreStart(page, args) {
+  const made = spawnSync(heavytop, ["explore", ...args, "--output", "-"], { encoding: "utf8", maxBuffer: 1 << 26 });
+  if (made.status !== 0) return { error: `heavytop explore ${args.join(" ")}: exit ${made.status}: ${made.stderr.trim()}` };
+  // The whole configuration, or (when it holds no more than the body and motion) HEAVYTOP_INITIAL.
+  const m = /window\.HEAVYTOP_CONFIG = (\{.*?\});<\/script>/.exec(made.stdout);
+  const initial = /window\.HEAVYTOP_INITIAL = (\{.*?\});<\/script>/.exec(made.stdout);
+  if (!m && !initial) return { error: `heavytop explore ${args.join(" ")}: no start in the page` };
+  const start = m ? JSON.parse(m[1]) : { config: JSON.parse(initial[1]) };
+  const thrown = await page.evaluate((st) => { try { heavytopExplorer.open(st, false); return null; } catch (e) { return String(e); } }, start);
+  const shown = await pageState(page);
+  if (thrown) shown.error = thrown;
+  shown.errors = [];
+  return shown;
+}
+// Words equal, their numbers to 1e-4 (a time or tilt integrated, printed to 4 digits).
+function sameWords(a, b) {
+  return compare(a, b, ".answer.words", 0, 0, []).length === 0;
+}
+async function checkEveryOption(browser, mainPage) {
+  const options = stabilityOptions();
+  check("stability --help lists the options (body, motion, damping, table, answer)", options.length >= 25 &&
+        ["--A", "--driven", "--contact", "--horizon", "--tip-radius"].every((o) => options.includes(o)), options.join(" "));
+  for (const option of options) {
+    const test = testValues[option];
+    if (!check(`${option}: has a test value (a new option of stability needs one in browser_explore.cjs)`, !!test)) continue;
+    const [base, value] = test;
+    const args = [...base, option, value];
+    const want = cliJson(args), without = cliJson(base);
+    if (!check(`${option} ${value}: stability accepts it`, !want.error, want.error)) continue;
+    check(`${option} ${value}: changes stability's answer (else this test shows nothing)`,
+          compare(want, without, "", 1e-12, 0, []).length > 0);
+    const shown = await exploreStart(mainPage, args);
+    if (!check(`heavytop explore ${args.join(" ")}: the page starts`, !shown.error && !!shown.stability, shown.error)) continue;
+    const diff = compare(shown.stability, want, "", 1e-12, 0, []);
+    check(`heavytop explore ${args.join(" ")}: the page answers as heavytop stability`, diff.length === 0 && !shown.error,
+          diff.slice(0, 3).join("; ") || shown.error);
+    const words = cliWords(args);
+    check(`heavytop explore ${args.join(" ")}: the page's words are stability's`, sameWords(shown.words, words),
+          `${(shown.words || "").slice(0, 100)} | ${words.slice(0, 100)}`);
+  }
+  // A link carries every key the page's form holds: the configuration of a page given them all
+  // (a pivot with damping and a motor; a table), as #config=, opens at the same configuration.
+  for (const [name, args] of [["every-key-pivot", ["--A", "5e-5", "--B", "4.8e-5", "--C", "1.3e-5", "--mass", "0.07", "--gravity", "9.7",
+                                                 "--length", "0.02", "--tip-radius", "0.001", "--rim-radius", "0.002", "--spin", "150",
+                                                 "--theta0", "0.1", "--phi0", "0.05", "--theta-rate0", "0.2", "--phi-rate0", "0.3",
+                                                 "--transverse-damping", "1e-7", "--axial-damping", "2e-6", "--friction", "1e-6",
+                                                 "--driven", "true", "--horizon", "20", "--max-tilt", "0.8", "--lifetime-horizon", "40"]],
+                              ["every-key-table", ["--config", path.join(examples, "rising-top.toml"), "--slip-speed", "0.8", "--horizon", "3",
+                                                 "--phi0", "0.02", "--theta-rate0", "0.1", "--phi-rate0", "0.1"]]]) {
+    const shown = await exploreStart(mainPage, args);
+    if (!check(`${name}: the page starts`, !shown.error && !!shown.stability, shown.error)) continue;
+    const want = cliJson(args);
+    const diff = compare(shown.stability, want, "", 1e-12, 0, []);
+    check(`${name}: the page answers as heavytop stability ${args.join(" ")}`, diff.length === 0, diff.slice(0, 3).join("; "));
+    // The link opened in the main page as a load opens it (the page's own link parsing).
+    const hash = "#config=" + encodeURIComponent(JSON.stringify(shown.config));
+    const again = await mainPage.evaluate((h) => { heavytopExplorer.open(h); return heavytopExplorer.config(); }, hash);
+    check(`${name}: a link with its configuration opens at the same configuration`, compare(again, shown.config, "", 0, 0, []).length === 0,
+          `${JSON.stringify(again).slice(0, 200)} vs ${JSON.stringify(shown.config).slice(0, 200)}`);
+  }
+}
+
+// ---- the table (issue 42, SPEC section 16) ------------------------------------------------------
+// The examples on a table opened by `heavytop explore --config`: the page's answer (the headline,
+// the words, the JSON with its events) is `heavytop stability`'s; the 3D view draws the table.
+async function checkTable(browser) {
+  for (const example of ["tippe-top", "rising-top", "rolling-coin"]) {
+    const file = path.join(examples, `${example}.toml`);
+    const shown = await explorePage(browser, `table-${example}`, ["--config", file]);
+    if (!check(`${example}: the page starts`, !shown.error && !!shown.stability, shown.error || shown.errors.join(" | "))) continue;
+    const want = cliJson(["--config", file]);
+    const diff = compare(shown.stability, want, "", 1e-12, 0, []);
+    const t = want.answer.table;
+    check(`${example}: the page's answer equals heavytop stability's (${want.answer.verdict}; turns over ${t.turns_over_at}, ` +
+          `upright ${t.upright_at}, track ${t.track})`, diff.length === 0, diff.slice(0, 3).join("; "));
+    const words = cliWords(["--config", file]);
+    const headline = words.slice(0, words.indexOf(" " + want.answer.reason));
+    check(`${example}: the page's headline is stability's ("${headline}")`, shown.headline === headline, shown.headline);
+    check(`${example}: the page's words are stability's`, sameWords(shown.words, words), `${shown.words} | ${words}`);
+    const c = shown.config;
+    check(`${example}: the page's inputs hold the table`, !!c.table && want.table.contact === c.table.contact &&
+          (want.table.friction === undefined || want.table.friction === c.table.friction) &&
+          c.body.tip_radius === want.table.tip_radius && c.body.rim_radius === want.table.rim_radius, JSON.stringify(c));
+    // The 3D view: the report's, with the table and P's track (D.table).
+    await shown.page.waitForFunction(() => /on the table/.test(document.getElementById("view-note").textContent), { timeout: 60000 })
+      .catch(() => {});
+    const view = await shown.page.evaluate(() => ({ note: document.getElementById("view-note").textContent, motion: document.getElementById("motion-info").textContent,
+                                                    shapes: window.heavytopView && window.heavytopView.shapes.map((s) => s.shape),
+                                                    follow: !document.getElementById("follow-label").hidden }));
+    check(`${example}: the 3D view draws it on the table with P's track`, /on the table/.test(view.note) && view.follow, `${view.note} ${JSON.stringify(view.shapes)}`);
+    check(`${example}: the tilt is plotted over the motion on the table`, /on the table/.test(view.motion), view.motion);
+    check(`${example}: no page error`, shown.errors.length === 0, shown.errors.join(" | "));
+    if (example === "tippe-top") {  // paused past the turn-over, P's track drawn so far
+      await shown.page.evaluate(() => {
+        if (window.heavytopView && window.heavytopView.time !== undefined) {
+          const play = document.getElementById("play");
+          if (play.textContent === "Pause") play.click();
+          const scrub = document.getElementById("scrub");
+          scrub.value = "7000";
+          scrub.dispatchEvent(new Event("input", { bubbles: true }));
+        }
+      });
+      await new Promise((r) => setTimeout(r, 500));
+      await shown.page.screenshot({ path: path.join(work, "explore-table.png"), fullPage: true });
+    }
+    await shown.page.close();
+  }
+}
+
+// ---- hostile input (issue 46) -------------------------------------------------------------------
+async function checkHostile(browser, page) {
+  const toy = { body: { A: 4.35e-5, B: 4.35e-5, C: 1.2e-5, mass: 0.06, length: 0.025 }, motion: { spin: 200, theta0: 0.05 } };
+  const t0 = Date.now();
+  const huge = await page.evaluate((c) => { try { heavytop.simulate(c, { samples: 1e8 }); return null; } catch (e) { return e.message; } }, toy);
+  check("simulate(toy, {samples: 1e8}) is refused at once, naming --samples and its limit", Date.now() - t0 < 5000 &&
+        /^heavytop: error: --samples: must be at most \d+/.test(huge || ""), `${huge} (${Date.now() - t0} ms)`);
+  // The limit is the command line's where it holds the whole run in memory (--format json).
+  const limit = Number(/at most (\d+)/.exec(huge || "")?.[1]);
+  fs.writeFileSync(path.join(work, "config.toml"), await page.evaluate((c) => heavytopExplorer.toml(c), toy));
+  const json = spawnSync(heavytop, ["simulate", "--config", "config.toml", "--samples", String(limit + 1), "--format", "json"], { cwd: work, encoding: "utf8" });
+  check("the page's limit on samples is the command line's (simulate --format json)", json.status === 2 &&
+        json.stderr.includes(`--samples: must be at most ${limit} `), json.stderr.trim());
+  for (const [options, flag] of [[{ help: true }, "--help"], [{ config: "x.toml" }, "--config"], [{ output: "x" }, "--output"],
+                                 [{ format: "json" }, "--format"], [{ colour: 3 }, "--colour"]]) {
+    const r = await page.evaluate((c, o) => { try { return { value: heavytop.simulate(c, o) }; } catch (e) { return { message: e.message }; } }, toy, options);
+    check(`simulate(toy, ${JSON.stringify(options)}) throws naming ${flag}`, !!r.message && r.message.startsWith("heavytop: error:") &&
+          r.message.includes(flag), r.message || JSON.stringify(r.value).slice(0, 80));
+  }
+  const st = await page.evaluate((c) => { try { heavytop.stability(c, { help: true }); return null; } catch (e) { return e.message; } }, toy);
+  check("stability(toy, {help: true}) throws naming --help", /^heavytop: error: --help/.test(st || ""), st);
+  const unknown = await page.evaluate((c) => { try { heavytop.stability(c, { horizont: 5 }); return null; } catch (e) { return e.message; } }, toy);
+  const cliUnknown = spawnSync(heavytop, ["stability", "--config", "config.toml", "--horizont", "5", "--format", "json"], { cwd: work, encoding: "utf8" });
+  check("stability(toy, {horizont: 5}) throws the command line's message", unknown === cliUnknown.stderr.trim(), `${unknown} | ${cliUnknown.stderr.trim()}`);
+  // Links: not JSON, not an object, no body, a body of the wrong type, random bytes: the page
+  // starts at the toy top and says why in one line.
+  const r = rng(46);
+  const randomText = (n) => Array.from({ length: n }, () => String.fromCharCode(32 + Math.floor(r() * 95))).join("");
+  // Keys from the configuration fuzzer's dictionary (fuzz/config.dict: heavytop's sections and keys).
+  const dict = path.join(examples, "..", "fuzz", "config.dict");
+  const words = fs.existsSync(dict) ? fs.readFileSync(dict, "utf8").split("\n").map((l) => /^"([A-Za-z0-9_]+)"$/.exec(l)).filter(Boolean).map((m) => m[1]) : [];
+  const keys = ["body", "motion", "damping", "table", "part", ...words];
+  const randomJson = () => {
+    const pick = (xs) => xs[Math.floor(r() * xs.length)];
+    const value = (d) => pick([() => null, () => r() * 10 - 5, () => pick([true, false]), () => randomText(4), () => [value(d + 1)],
+                               () => (d > 3 ? 1 : Object.fromEntries(Array.from({ length: 1 + Math.floor(r() * 4) }, () => [pick(keys), value(d + 1)])))])();
+    return JSON.stringify({ [pick(keys)]: value(1), [pick(keys)]: value(1) });
+  };
+  const links = ["{}", "", "null", "[]", "3", '"x"', "{", '{"motion": {"spin": 5}}', '{"body": 3}', '{"body": {"part": 3}}',
+                 '{"body": {"part": [3, null]}}', '{"body": {"A": "x"}, "motion": null}', '{"body": {}, "table": {"contact": 7}}',
+                 "%E0%A4%A", '{"body": {"A": 1e400}}', '{"__proto__": {"body": 1}}'];
+  for (let i = 0; i < 12; i++) links.push(i % 2 ? randomJson() : randomText(1 + Math.floor(r() * 30)));
+  // Each link opened in this page as a load opens it (heavytopExplorer.open: the page's own link
+  // parsing, inputs, answer, motion and 3D view); the first two ("{}", not JSON) by a real load of the page.
+  let started = 0;
+  const failed = [];
+  const errors = [];
+  page.on("pageerror", (err) => errors.push(String(err)));
+  for (const [i, link] of links.entries()) {
+    const hash = "#config=" + (link.startsWith("%") ? link : encodeURIComponent(link));
+    let state, ready = true, thrown = null;
+    const before = errors.length;
+    if (i < 2) {
+      const p = await browser.newPage();
+      p.on("pageerror", (err) => errors.push(String(err)));
+      p.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+      await p.goto("file://" + path.resolve(pageFile) + hash, { waitUntil: "load" });
+      ready = await p.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 60000 }).then(() => true, () => false);
+      state = await pageState(p);
+      state.A = await p.evaluate(() => document.getElementById("A").value);
+      await p.close();
+    } else {
+      thrown = await page.evaluate((h) => { try { heavytopExplorer.open(h); return null; } catch (e) { return String(e); } }, hash);
+      state = await pageState(page);
+      state.A = await page.evaluate(() => document.getElementById("A").value);
+    }
+    // Started: ready, nothing uncaught, an answer or the core's one-line message; a link without a
+    // body says so in one line.
+    const said = state.notice || state.error;
+    const ok = ready && !thrown && errors.length === before && (!!state.stability || /^heavytop: error: /.test(state.error)) &&
+               !/\n/.test(said.trim()) && (state.notice !== "" || (state.config && /"body"\s*:\s*\{/.test(link)));
+    if (ok) started++; else failed.push(`${JSON.stringify(link)}: ready=${ready} ${thrown || ""} ${errors.slice(before).join(" | ")} ${JSON.stringify(state).slice(0, 200)}`);
+    if (link === "{}") check("explore.html#config={} starts at the toy top with a one-line message",
+                             ok && Math.abs(Number(state.A) - 4.35e-5) < 1e-15 && /no body/.test(state.notice), JSON.stringify(state).slice(0, 200));
+  }
+  check(`malformed links (#config=, ${links.length} of them, 12 random): the page always starts and says why in one line`,
+        started === links.length, failed.slice(0, 3).join(" || "));
 }
 
 (async () => {
@@ -429,6 +692,9 @@ async function checkReport(browser) {
 
   check("no request leaves the page's folder", foreign.length === 0, foreign.join(" "));
   check("no console error", errors.length === 0, errors.join(" | "));
+  await checkHostile(browser, page);
+  await checkEveryOption(browser, page);
+  await checkTable(browser);
   if (reportDir) await checkReport(browser);
   await browser.close();
   process.exit(failures ? 1 : 0);

@@ -2,7 +2,8 @@
 # The explorer page (SPEC section 15) in a real browser (browser_explore.cjs: headless chromium,
 # puppeteer-core from report/web's npm packages), as `heavytop explore` writes it; and the
 # command without the page (exit 2, saying how to build it). The page's benchmarks are written
-# to $ARTEFACTS/explore-benchmark.json, its screenshot to $ARTEFACTS/explore.png.
+# to $ARTEFACTS/explore-benchmark.json, its screenshots to $ARTEFACTS/explore*.png (explore-table.png:
+# the tippe top on its table).
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/harness.sh"
 : "${CHROMIUM:?}" "${NODE:?}" "${NODE_MODULES:?}" "${ARTEFACTS:?}"
@@ -17,6 +18,21 @@ grep -q '"mass": 0.07' page/other.html
 check "the page starts at the body given" test $? -eq 0
 "$H" explore > /dev/null 2> err.txt
 check "explore without --output: exit 2" test $? -eq 2 -a "$(wc -l < err.txt)" -eq 1
+# --output -: the page on stdout (SPEC section 1), the same bytes as the file.
+"$H" explore --output - > page/stdout.html 2> err.txt
+check "explore --output -: exit 0, nothing on stderr" test $? -eq 0 -a ! -s err.txt
+check "explore --output -: the page on stdout, as --output FILE writes it" cmp -s page/stdout.html page/explore.html
+# Every option of stability is one of explore's (the page answers as stability does).
+missing=$(comm -23 <("$H" stability --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9_-]+' | sed 's/^ *//; s/^-.,//' | sort -u) \
+                   <("$H" explore --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9_-]+' | sed 's/^ *//; s/^-.,//' | sort -u) | grep -v -x -e --format)
+check "explore takes every option of stability${missing:+ (missing: $missing)}" test -z "$missing"
+"$H" explore --axial-damping 2e-6 --driven true --output page/driven.html
+check "explore --driven true: the page starts with the motor" grep -q '"driven":true' page/driven.html
+# Only a configuration beyond the body, damping and motion is written whole (HEAVYTOP_CONFIG):
+# else the page is Python's explore()'s, byte for byte (python/tests/test_parity.py).
+check "explore of a body and motion: no HEAVYTOP_CONFIG" grep -qF 'HEAVYTOP_CONFIG = /*HEAVYTOP_CONFIG*/null;' page/other.html
+"$H" explore --max-tilt 4 --output x.html 2> err.txt
+check "explore --max-tilt 4: exit 2 naming --max-tilt" test $? -eq 2 -a "$(cat err.txt)" = "heavytop: error: --max-tilt: must be in (0, pi]"
 
 # A heavytop that finds no page says how to build it ($HEAVYTOP_EXPLORER_PAGE: only there).
 HEAVYTOP_EXPLORER_PAGE=/nonexistent/heavytop-explore.html "$H" explore --output x.html 2> err.txt
@@ -36,5 +52,5 @@ check "a report without the page: no link to it" bash -c "! grep -q explore.html
 NODE_PATH="$NODE_MODULES" "$NODE" "$here/browser_explore.cjs" "$CHROMIUM" "$H" page/explore.html "$PWD/cli" "$(realpath "$here/../examples")" "$PWD/report"
 check "in the browser" test $? -eq 0
 cp cli/benchmark.json "$ARTEFACTS/explore-benchmark.json" 2>/dev/null
-for f in explore explore-view explore-parts report-explorer; do cp cli/$f.png "$ARTEFACTS/$f.png" 2>/dev/null; done
+for f in explore explore-view explore-parts explore-table report-explorer; do cp cli/$f.png "$ARTEFACTS/$f.png" 2>/dev/null; done
 finish

@@ -56,7 +56,33 @@
     if (r.message) console.warn(r.message);  // the command line's warnings on stderr
     return utf8.decode(r.output);  // a view of the core's memory, valid until its next call
   }
-  function stability(config) { return JSON.parse(check(core.stability(toml(config)))); }
+  // Options as the command line's flags: {horizon: 50} -> --horizon 50 (a key's "_" as "-").
+  function flags(options) {
+    if (options === null || options === undefined) return [];
+    if (typeof options !== "object" || Array.isArray(options))
+      throw new Error("heavytop: error: options: must be an object of the command's options, e.g. {horizon: 50}");
+    const args = [];
+    for (const [key, value] of Object.entries(options))
+      if (value !== undefined) args.push("--" + key.replace(/_/g, "-"), String(value));
+    return args;
+  }
+  function withArgs(options, f) {
+    const args = new core.StringList();
+    try {
+      for (const a of flags(options)) args.push_back(a);
+      return f(args);
+    } finally { args.delete(); }
+  }
+  // options: the answer's {horizon, max_tilt, lifetime_horizon} (stability's flags).
+  function stability(config, options = {}) {
+    const text = toml(config);
+    return JSON.parse(withArgs(options, (args) => check(core.stability(text, args, "json"))));
+  }
+  // `heavytop stability` for people (--format text): the answer in words, then the details.
+  function stabilityText(config, options = {}) {
+    const text = toml(config);
+    return withArgs(options, (args) => check(core.stability(text, args, "text")));
+  }
   function lifetime(config) { return JSON.parse(check(core.lifetime(toml(config)))); }
   // `heavytop body --format json`: the body the configuration describes (of its parts, meshes read).
   function body(config) { return JSON.parse(check(core.body(toml(config)))); }
@@ -84,15 +110,11 @@
     }
     return { columns, rows };
   }
-  // options: {model, t_end, samples}; any other key is the flag of its name (rtol -> --rtol).
+  // options: {model, t_end, samples}; any other key is the flag of its name (rtol -> --rtol),
+  // refused as the command line refuses an unknown one.
   function simulate(config, options = {}) {
     const text = toml(config);
-    const args = new core.StringList();
-    try {
-      for (const [key, value] of Object.entries(options || {}))
-        if (value !== undefined) { args.push_back("--" + key.replace(/_/g, "-")); args.push_back(String(value)); }
-      return parseCsv(check(core.simulate(text, args)));
-    } finally { args.delete(); }
+    return parseCsv(withArgs(options, (args) => check(core.simulate(text, args))));
   }
   // The stability map: one byte per point (bits: first-order, body-fixed, linearized, Lyapunov).
   function map(config, x, y) {
@@ -102,17 +124,36 @@
   }
 
   // ---- The page -------------------------------------------------------------------------------
-  // A link may carry the start: explore.html#config={...} (the report's map points link so).
-  const fromLink = (() => {
-    const m = /^#config=(.*)$/.exec(location.hash);
-    if (!m) return null;
-    try { return JSON.parse(decodeURIComponent(m[1])); } catch (e) { return null; }
-  })();
-  const initial = fromLink || window.HEAVYTOP_INITIAL || {
+  // The start: a link's explore.html#config={...} (the report's map points link so), else what
+  // `heavytop explore` wrote (HEAVYTOP_CONFIG: the whole configuration and the answer's options;
+  // a report's copy has HEAVYTOP_INITIAL: the body and motion), else the built-in toy top. A link
+  // that is not JSON of a configuration with a [body] starts at the toy top, and says so.
+  const toyTop = {
     body: { A: 6.0e-6 + 3.75e-5, B: 6.0e-6 + 3.75e-5, C: 1.2e-5, mass: 0.060, length: 0.025, gravity: 9.81 },
     motion: { spin: 200.0, theta0: 0.05, phi0: 0 },
     damping: { transverse: 0, axial: 0, friction: 0 },
   };
+  const isObject = (x) => x !== null && typeof x === "object" && !Array.isArray(x);
+  // A link's start, explore.html#config=...: {config} when it is JSON of a configuration with a
+  // body, else {config: null, notice} (the one line the page shows, starting at the toy top).
+  function fromLink(hash) {
+    const m = /^#config=(.*)$/s.exec(hash || "");
+    if (!m) return { config: null, notice: "" };
+    let c;
+    try { c = JSON.parse(decodeURIComponent(m[1])); } catch (e) {
+      return { config: null, notice: `The link's configuration (#config=) is not JSON (${e.message}): starting from the built-in toy top.` };
+    }
+    if (!isObject(c))
+      return { config: null, notice: "The link's configuration (#config=) must be an object of sections, {body: {...}, motion: {...}}: starting from the built-in toy top." };
+    if (!isObject(c.body))
+      return { config: null, notice: "The link's configuration (#config=) has no body (body: {A, B, C, mass, length} or body.part): starting from the built-in toy top." };
+    return { config: c, notice: "" };
+  }
+  const link = fromLink(location.hash);
+  const given = window.HEAVYTOP_CONFIG;
+  // The configuration the inputs started from: its keys that the form does not show go on.
+  let initial = link.config || (!link.notice && given && given.config) || (!link.notice && window.HEAVYTOP_INITIAL) || toyTop;
+  const initialOptions = (!link.config && !link.notice && given && given.stability) || {};
   const bodyKeys = ["A", "B", "C", "mass", "length", "gravity"];
   const momentKeys = ["A", "B", "C", "mass", "length"];
   // ---- The parts list ([[body.part]], SPEC section 10) --------------------------------------
@@ -222,36 +263,108 @@
     $("parts").classList.toggle("hidden", !byParts);
   }
   const dampingKeys = ["transverse", "axial", "friction"];
+  const motionKeys = ["theta0", "phi0", "theta_rate0", "phi_rate0"];
+  const shapeKeys = ["tip_radius", "rim_radius"];  // [body]: what touches the table
+  // The answer's options (stability's --horizon, --max-tilt, --lifetime-horizon).
+  const answerKeys = ["horizon", "max_tilt", "lifetime_horizon"];
   const rpm = 60 / (2 * Math.PI);
-  function fillInputs(c) {
-    if (c.body.part) {
+  const section = (c, name) => (isObject(c[name]) ? c[name] : {});
+  const shown = (v) => (v === undefined || v === null ? "" : v);
+  // The inputs at a configuration (never throws: a value the form cannot hold is shown as text
+  // and refused by the core with the command line's message).
+  function fillInputs(c, options) {
+    const body = section(c, "body"), motion = section(c, "motion"), damping = section(c, "damping"), table = section(c, "table");
+    if (Array.isArray(body.part)) {
       $("body-mode").value = "parts";
-      parts = c.body.part.map((p) => ({ ...p }));
+      parts = body.part.map((p) => (isObject(p) ? { ...p } : {}));
       drawParts();
     } else $("body-mode").value = "moments";
     showMode();
-    for (const k of bodyKeys) if (!c.body.part || k === "gravity") $(k).value = c.body[k] ?? (k === "gravity" ? 9.81 : "");
-    $("spin").value = $("spin-unit").value === "rpm" ? (c.motion.spin || 0) * rpm : c.motion.spin || 0;
-    $("theta0").value = c.motion.theta0 || 0;
-    $("phi0").value = c.motion.phi0 || 0;
-    for (const k of dampingKeys) $(k).value = (c.damping && c.damping[k]) || 0;
+    for (const k of bodyKeys) if (!Array.isArray(body.part) || k === "gravity") $(k).value = shown(body[k] ?? (k === "gravity" ? 9.81 : ""));
+    for (const k of shapeKeys) $(k).value = shown(body[k]);
+    const spin = motion.spin ?? (motion.spin_rpm !== undefined ? motion.spin_rpm / rpm : 0);
+    $("spin").value = $("spin-unit").value === "rpm" ? spin * rpm : spin;
+    for (const k of motionKeys) $(k).value = shown(motion[k] ?? 0);
+    $("driven").checked = motion.driven === true;
+    for (const k of dampingKeys) $(k).value = shown(damping[k] ?? 0);
+    $("contact").value = ["frictionless", "rolling", "sliding"].includes(table.contact) ? table.contact : "pivot";
+    $("table_friction").value = shown(table.friction);
+    $("friction_law").value = table.friction_law === "coulomb" ? "coulomb" : "viscous";
+    $("slip_speed").value = shown(table.slip_speed);
+    showTable();
+    if (options) for (const k of answerKeys) $(k).value = shown(options[k]);
   }
-  // The configuration the inputs describe (an empty field is left out: the core says what is missing).
+  // The inputs at a start (a configuration and the answer's options) and the one line said of it;
+  // a start the form cannot show is the toy top's, said in that line.
+  function show(config, options, notice = "") {
+    try { fillInputs(config, options); initial = config; }
+    catch (e) {
+      notice = `The start's configuration could not be shown (${e.message}): starting from the built-in toy top.`;
+      fillInputs(toyTop, {});
+      initial = toyTop;
+    }
+    $("notice").textContent = notice;
+  }
+  // Opens a start as a page load does: a link's hash ("#config=...") or {config, stability} as
+  // `heavytop explore` writes it (HEAVYTOP_CONFIG); the answer, then (unless draw is false) the
+  // motion and the 3D view.
+  function open(start, draw = true) {
+    if (typeof start === "string") {
+      const l = fromLink(start);
+      show(l.config || toyTop, {}, l.notice);
+    } else show(start.config, start.stability || {});
+    if (draw) update({}); else showVerdict();
+    return current;
+  }
+  function showTable() {
+    const sliding = $("contact").value === "sliding";
+    $("sliding-fields").classList.toggle("hidden", !sliding);
+    for (const e of document.querySelectorAll(".viscous-field")) e.classList.toggle("hidden", $("friction_law").value !== "viscous");
+  }
+  const num = (id) => ($(id).value.trim() === "" ? undefined : Number($(id).value));
+  // The configuration the inputs describe (an empty field is left out: the core says what is
+  // missing, or takes its default). The start's keys that the form does not show (the general
+  // body's, a [simulate] section) go on as they were.
   function readInputs() {
-    const num = (id) => ($(id).value.trim() === "" ? undefined : Number($(id).value));
-    const c = { body: {}, motion: {}, damping: {} };
+    const c = {};
+    for (const [k, v] of Object.entries(initial)) if (isObject(v)) c[k] = JSON.parse(JSON.stringify(v));
+    c.body = c.body || {};
+    c.motion = c.motion || {};
+    const set = (table, key, value) => { if (value === undefined) delete table[key]; else table[key] = value; };
     if ($("body-mode").value === "parts") {
-      c.body.gravity = num("gravity");
+      for (const k of momentKeys) delete c.body[k];
+      set(c.body, "gravity", num("gravity"));
       c.body.part = parts.map((p) => ({ ...p }));
-    } else for (const k of bodyKeys) c.body[k] = num(k);
+    } else {
+      delete c.body.part;
+      for (const k of bodyKeys) set(c.body, k, num(k));
+    }
+    for (const k of shapeKeys) set(c.body, k, num(k));
     const spin = num("spin");
+    delete c.motion.spin; delete c.motion.spin_rpm;
     if ($("spin-unit").value === "rpm") c.motion.spin_rpm = spin; else c.motion.spin = spin;
-    c.motion.theta0 = num("theta0");
-    c.motion.phi0 = num("phi0");
-    for (const k of ["theta_rate0", "phi_rate0"]) if (initial.motion[k]) c.motion[k] = initial.motion[k];  // from `heavytop explore`
+    for (const k of motionKeys) set(c.motion, k, num(k));
+    set(c.motion, "driven", $("driven").checked ? true : undefined);
+    c.damping = {};
     for (const k of dampingKeys) if (num(k)) c.damping[k] = num(k);
     if (!Object.keys(c.damping).length) delete c.damping;
+    const contact = $("contact").value;
+    delete c.table;
+    if (contact !== "pivot") {  // [table]: the keys its contact takes (the others are refused)
+      c.table = { contact };
+      if (contact === "sliding") {
+        set(c.table, "friction", num("table_friction"));
+        c.table.friction_law = $("friction_law").value;
+        if (c.table.friction_law === "viscous") set(c.table, "slip_speed", num("slip_speed"));
+      }
+    }
     return c;
+  }
+  // The answer's options the inputs give (stability's flags).
+  function readOptions() {
+    const o = {};
+    for (const k of answerKeys) if (num(k) !== undefined) o[k] = num(k);
+    return o;
   }
   const damped = (c) => !!c.damping;
 
@@ -265,7 +378,7 @@
   let madeBody = null;
   function showVerdict() {
     const config = readInputs();
-    let s;
+    let s, words;
     try {
       if (config.body.part) {
         madeBody = body(config);
@@ -273,33 +386,47 @@
         $("body-made").textContent = `They make A = ${fmt(b.A, 6)}, B = ${fmt(b.B, 6)}, C = ${fmt(b.C, 6)} kg m², ` +
           `mass ${fmt(b.mass, 6)} kg, centre of mass at ${fmt(b.length, 6)} m on the axis (heavytop body).`;
       }
-      s = stability(config);
+      const options = readOptions();
+      s = stability(config, options);
+      // The answer in the command line's words: the first paragraph of `heavytop stability`.
+      words = stabilityText(config, options).split("\n\n")[0];
       $("error").textContent = "";
     } catch (e) {
+      current = null;
       $("error").textContent = e.message;
       $("answer").textContent = "—";
       $("answer").className = "";
+      delete $("answer").dataset.verdict;
       return false;
     }
-    current = { config, stability: s };
+    current = { config, options: readOptions(), stability: s, words };
     const box = $("answer");
-    if (s.answer) {
-      const a = s.answer;
-      box.className = a.verdict === "stays up" ? "up" : a.verdict === "falls" ? "falls" : "horizon";
-      let text = `It ${a.verdict}${a.proven ? " (proven)" : ""}.`;
-      if (a.falls_at !== null && a.falls_at !== undefined) text += ` It falls at t = ${fmt(a.falls_at)} s.`;
-      if (a.max_tilt !== null && a.max_tilt !== undefined) text += ` Largest tilt ${fmt(a.max_tilt)} rad (${deg(a.max_tilt)}).`;
-      if (a.min_spin !== null && a.min_spin !== undefined) text += ` Proven stable from ${spinWords(a.min_spin)}.`;
-      if (a.lifetime !== null && a.lifetime !== undefined) text += ` Lifetime ${fmt(a.lifetime)} s.`;
-      box.innerHTML = "";
-      box.append(text);
-      if (a.reason) { const r = document.createElement("div"); r.className = "small"; r.textContent = a.reason; box.append(r); }
-    } else {
-      const v = s.lyapunov ? s.lyapunov.verdict : "?";
-      box.className = v === "stable" ? "up" : v === "unstable" ? "falls" : "horizon";
-      box.textContent = `Lyapunov verdict at ${spinWords(s.spin)}: ${v}` +
-        (s.wander && s.wander.max_tilt !== null ? `; largest tilt ${fmt(s.wander.max_tilt)} rad (${deg(s.wander.max_tilt)})` : "");
+    const a = s.answer;
+    box.className = a.verdict === "stays up" ? "up" : a.verdict === "falls" || a.verdict === "leaves the table" ? "falls" : "horizon";
+    // The headline: the words before the JSON's reason (stability's text is headline, reason, more).
+    const at = a.reason ? words.indexOf(" " + a.reason) : -1;
+    const headline = document.createElement("b");
+    headline.className = "headline";
+    headline.textContent = at > 0 ? words.slice(0, at) : words;
+    box.innerHTML = "";
+    box.append(headline, at > 0 ? words.slice(at) : "");
+    const numbers = [];
+    const add = (label, x, unit) => { if (x !== null && x !== undefined) numbers.push(`${label} ${fmt(x, 7)}${unit}`); };
+    if (a.table) {
+      add("upright from t =", a.table.upright_at, " s");
+      add("turns over at t =", a.table.turns_over_at, " s");
+      add("leaves the table at t =", a.table.leaves_at, " s");
+      add("track", a.table.track, " m");
+      add("final tilt", a.table.final_tilt, " rad");
     }
+    add("falls at t =", a.falls_at, " s");
+    add("largest tilt", a.max_tilt, " rad");
+    add("proven stable from", a.min_spin, " rad/s");
+    add("lifetime", a.lifetime, " s");
+    const line = document.createElement("div");
+    line.className = "numbers";
+    line.textContent = `${a.verdict}${a.proven ? " (proven)" : ""}: ` + numbers.join("; ");
+    box.append(line);
     box.dataset.verdict = box.textContent;
     const tbody = $("models").querySelector("tbody");
     tbody.innerHTML = "";
@@ -317,6 +444,14 @@
         `; proven stable spins: ${intervals(s.lyapunov.stable_spin_intervals)}`);
     if (s.wander) p(`Largest tilt: ${s.wander.max_tilt === null ? "–" : fmt(s.wander.max_tilt) + " rad (" + deg(s.wander.max_tilt) + ")"}, ${s.wander.method}` +
       (s.wander.horizon ? ` over ${fmt(s.wander.horizon)} s` : "") + (s.wander.note ? ` (${s.wander.note})` : ""));
+    if (s.table) {  // SPEC section 16: the spinning states on the table
+      const state = (label, t) => p(t === null ? `${label}: none (a rim's axis cannot stand vertical)` :
+        `${label} (${s.table.contact}): ${t.stable ? "stable" : "unstable"}${t.asymptotically ? ", asymptotically" : ""} at this spin; ` +
+        `critical spin ${spinWords(t.critical_spin)}; stable spins ${intervals(t.stable_spin_intervals)}`);
+      state("Spinning upright on the table", s.table.upright);
+      state("Spinning inverted", s.table.inverted);
+      p("The models' table above is the same body on a pivot.");
+    }
     if (damped(config)) {
       try {
         const l = lifetime(config);
@@ -359,6 +494,13 @@
     const n = Math.max(2, Math.min(400, Math.round(Number($("map-n").value) || 100)));
     // sweep's grid is row-major with its first axis slowest: rows are y (top to bottom), columns x.
     const [x, y] = axesOf(n);
+    if (onTable(readInputs())) {  // sweep's verdicts are the pivot's (SPEC section 16: not a table's)
+      const canvas = $("map");
+      canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+      mapState = null;
+      $("map-info").textContent = "(the map's verdicts are the pivot's: set the contact to pivot to draw it)";
+      return;
+    }
     let verdicts;
     const t0 = performance.now();
     try {
@@ -417,13 +559,24 @@
   }
 
   // ---- The motion ----------------------------------------------------------------------------
+  // s, the motion shown: 10 s on a pivot; on a table as the table's report shows it (report/src/
+  // report.cpp table_report_horizon()): twice the answer's event (the turn-over, the rise to sleep,
+  // leaving the table; a fall and a fifth more), else the answer's horizon, at most 10 s.
+  function shownHorizon() {
+    const a = current && current.stability.answer;
+    if (!a || !a.table) return 10;
+    if (a.falls_at > 0) return 1.2 * a.falls_at;
+    for (const e of [a.table.turns_over_at, a.table.upright_at, a.table.leaves_at]) if (e > 0) return 2 * e;
+    return Math.min(a.horizon, 10);
+  }
+  const onTable = (c) => !!(c && c.table && c.table.contact && c.table.contact !== "pivot");
   function drawMotion() {
-    const c = readInputs();
+    const c = readInputs(), horizon = shownHorizon();
     const canvas = $("motion"), g = canvas.getContext("2d");
     g.clearRect(0, 0, canvas.width, canvas.height);
     let run;
     const t0 = performance.now();
-    try { run = simulate(c, { model: "nonlinear", t_end: 10, samples: 1001 }); }
+    try { run = simulate(c, { model: "nonlinear", t_end: horizon, samples: 1001 }); }
     catch (e) { $("motion-info").textContent = "motion: " + e.message; return; }
     const ms = performance.now() - t0;
     const col = (name) => run.columns.indexOf(name);
@@ -442,7 +595,7 @@
       i ? g.lineTo(X, Y) : g.moveTo(X, Y);
     });
     g.stroke();
-    $("motion-info").textContent = `The nonlinear body's tilt from the vertical over 10 s (largest ${deg(Math.max(...tilt))}), computed in ${ms.toFixed(0)} ms. Click the map to see another point's motion.`;
+    $("motion-info").textContent = `The nonlinear body's tilt from the vertical over ${fmt(tmax)} s${onTable(c) ? " on the table" : ""} (largest ${deg(Math.max(...tilt))}), computed in ${ms.toFixed(0)} ms. Click the map to see another point's motion.`;
   }
 
   // ---- The 3D view: the report's own (report/web/src/main.js), on this page's run ------------------
@@ -452,13 +605,20 @@
     if (!window.heavytopView3D) { note.textContent = `No 3D view in this page: ${window.heavytopView3DMissing}.`; return; }
     let data;
     const t0 = performance.now();
-    try { data = view(readInputs(), 10, 1001); }
+    const c = readInputs();
+    // On a table P's track is drawn from every sample (its small loops would alias at 1001).
+    try { data = view(c, shownHorizon(), onTable(c) ? 4001 : 1001); }
     catch (e) { note.textContent = "3D view: " + e.message; return; }
     if (shown3d) shown3d.dispose();
+    $("follow").checked = true;  // the view starts following the body on a table
+    $("follow-label").hidden = !data.table;
+    $("inset-words").hidden = !!data.table;  // on a table no inset: P's track shows the motion
     shown3d = window.heavytopView3D.show(data);
     const what = data.parts.length ? `its ${data.parts.length} part${data.parts.length > 1 ? "s" : ""} (${data.parts.map((p) => p.shape).join(", ")})`
+                                   : data.table ? "what touches the table (the tip's sphere or the rim, with the uniform ellipsoid of its mass and moments above a small tip)"
                                    : "the uniform ellipsoid with its mass and moments" + (data.shape.note ? ` (not to scale: ${data.shape.note})` : "");
-    note.textContent = `The body drawn as ${what}; the run computed and drawn in ${(performance.now() - t0).toFixed(0)} ms.`;
+    const where = data.table ? ` on the table (${data.table.contact}; the black line: the track of the contact point P)` : "";
+    note.textContent = `The body drawn as ${what}${where}; the run computed and drawn in ${(performance.now() - t0).toFixed(0)} ms.`;
   }
 
   function update(what = {}) {
@@ -471,7 +631,7 @@
   let pending = false;
   // An input changed: the verdict at once, on every keystroke; the motion, the view (and the map) after a pause.
   function changed(map) {
-    showVerdict();
+    if (!onTable(readInputs())) showVerdict();  // on a table after the pause (the answer follows the motion)
     if (pending) return;
     pending = true;
     setTimeout(() => { pending = false; update({ map }); }, 150);
@@ -495,8 +655,8 @@
       for (const k of mapKeys) { const o = document.createElement("option"); o.value = o.textContent = k; $(`map-${which}`).append(o); }
     $("map-x").value = "spin";
     $("map-y").value = "B/A";
-    fillInputs(initial);
-    setupMap("spin", "x"); setupMap("B/A", "y");
+    show(initial, initialOptions, link.notice);
+    try { setupMap("spin", "x"); setupMap("B/A", "y"); } catch (e) { $("map-info").textContent = e.message; }
     const schedule = changed;
     $("body-mode").addEventListener("change", () => {
       const c = readInputs();
@@ -519,7 +679,10 @@
       for (const f of e.dataTransfer.files) take(f);
     });
     $("mesh-file").addEventListener("change", (e) => { for (const f of e.target.files) take(f); });
-    for (const id of [...bodyKeys, "spin", "theta0", "phi0", ...dampingKeys]) $(id).addEventListener("input", () => schedule(true));
+    for (const id of [...bodyKeys, ...shapeKeys, "spin", ...motionKeys, ...dampingKeys, "table_friction", "slip_speed", ...answerKeys])
+      $(id).addEventListener("input", () => schedule(true));
+    for (const id of ["driven", "contact", "friction_law"])
+      $(id).addEventListener("change", () => { showTable(); schedule(true); });
     $("spin-unit").addEventListener("change", () => {
       const v = Number($("spin").value);
       $("spin").value = Number(($("spin-unit").value === "rpm" ? v * rpm : v / rpm).toPrecision(12));
@@ -528,7 +691,7 @@
     for (const w of ["x", "y"]) $(`map-${w}`).addEventListener("change", () => { setupMap($(`map-${w}`).value, w); drawMap(); });
     for (const id of ["map-x0", "map-x1", "map-y0", "map-y1", "map-n", "map-model"]) $(id).addEventListener("change", drawMap);
     $("map").addEventListener("click", mapClick);
-    showVerdict();
+    try { showVerdict(); } catch (e) { $("error").textContent = e.message; }
     // Ready even if a drawing fails (its error is then the page's, for a person and for the tests).
     setTimeout(() => { try { drawMotion(); drawView(); drawMap(); } finally { document.body.dataset.ready = "1"; } }, 0);
   }
@@ -555,7 +718,12 @@
     core = m;
     coreReadyAt = performance.now();
     window.heavytop = Object.freeze({ stability, simulate, version: m.version() });
-    window.heavytopExplorer = { toml, map, lifetime, body, view, putFile, addMesh, config: readInputs, benchmark, loadStart };
-    start();
+    window.heavytopExplorer = { toml, map, lifetime, body, view, putFile, addMesh, config: readInputs, options: readOptions,
+                                stabilityText, current: () => current, open, benchmark, loadStart };
+    try { start(); }
+    catch (e) {  // never a page that does not start: the error in one line, the page ready
+      $("error").textContent = `heavytop: error: the page could not start: ${e.message}`;
+      document.body.dataset.ready = "1";
+    }
   });
 })();

@@ -24,6 +24,7 @@
 
 #include <fmt/format.h>
 #include <functional>
+#include <optional>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -32,10 +33,15 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include <nlohmann/json.hpp>
+
+#include "heavytop/frames.hpp"
 #include "heavytop/io/config.hpp"
+#include "heavytop/report/figures.hpp"
 #include "heavytop/report/report.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/table.hpp"
 #include "heavytop/version.hpp"
 
 namespace {
@@ -72,6 +78,48 @@ std::string slurp(const char* path) {
     std::fclose(f);
   }
   return text;
+}
+
+// The most samples the page's simulate() returns: the command line's limit where it holds the
+// whole run in memory (`simulate --format json`, cli/simulate_command.cpp), as the page does
+// (the CSV's text, then its rows in JavaScript); the command line's CSV streams any number.
+constexpr long long kMaxPageSamples = 2'000'000;
+
+// The flags the page sets itself (ARGS may not): the configuration's file, the output and its format;
+// --help would print the help and succeed with no output.
+bool reserved_flag(const std::string& word) {
+  for (const char* flag : {"--config", "--output", "--format", "--help", "-h", "--help-all", "--version"})
+    if (word == flag || word.starts_with(std::string(flag) + "=")) return true;
+  return false;
+}
+
+// A refusal as the command line words one (exit status 2, one line naming the key and the rule).
+Result refused(const std::string& key, const std::string& rule) {
+  Result r;
+  r.status = 2;
+  r.message = fmt::format("heavytop: error: {}: {}", key, rule);
+  return r;
+}
+
+// The page's options (ARGS: "--flag", "value" pairs) checked before the command runs: no flag the
+// page sets itself, and --samples within kMaxPageSamples. Unknown flags are CLI11's to refuse.
+std::optional<Result> refuse_page_args(const char* command, const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i < args.size(); i += 2) {
+    const std::string& flag = args[i];
+    if (reserved_flag(flag))
+      return refused(flag, fmt::format("not an option of the page's {}() (the page gives the configuration, the "
+                                       "output and its format itself)",
+                                       command));
+    if (flag == "--samples" && i + 1 < args.size()) {
+      char* end = nullptr;
+      const double n = std::strtod(args[i + 1].c_str(), &end);
+      if (end != args[i + 1].c_str() && *end == '\0' && n > static_cast<double>(kMaxPageSamples))
+        return refused("--samples", fmt::format("must be at most {} in the page, which holds the whole run in memory "
+                                                "(the command line's --format csv streams any number)",
+                                                kMaxPageSamples));
+    }
+  }
+  return std::nullopt;
 }
 
 // `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it.
@@ -130,26 +178,77 @@ Result map_verdicts(std::vector<unsigned char>& bytes, const std::string& config
   return run("sweep", make, config, {});
 }
 
+// What the 3D view draws on a table (report/web/src/main.js buildView() with D.table): the view's
+// data for the run's attitude (psi from the axial momentum C w3, w3 the run's `spin`), and O's
+// position at the samples drawn, P's track at every sample, the tip's and rim's radii. The same
+// as the table report's report-data.js (report/src/report.cpp table_view_json(), which the report
+// library does not export: were it, this would be one call).
+std::string table_view(const Body& body, const Table& table, const Trajectory& run, const std::vector<report::DrawnPart>& parts) {
+  const auto column = [&](std::string_view name) -> const std::vector<double>& {
+    for (const auto& [key, values] : run.extra)
+      if (key == name && values.size() == run.size()) return values;
+    throw cli::Failure(fmt::format("a table run needs its '{}' column", name));
+  };
+  Trajectory attitude = run;
+  std::vector<double> axial = column("spin");
+  for (double& w : axial) w *= body.C;
+  attitude.extra.emplace_back("axial_momentum", std::move(axial));
+  nlohmann::json data = nlohmann::json::parse(report::view_data(body, attitude, parts));
+  const std::vector<double>&x = column("x"), &y = column("y"), &height = column("height");
+  const auto value = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json ox = nlohmann::json::array(), oy = nlohmann::json::array(), oz = nlohmann::json::array();
+  for (std::size_t i : report::display_samples(run.size())) {  // O = P + r e_zeta - rho u, as the report
+    const Eigen::Vector3d k = axis_frame(run.phi[i], run.theta[i]).col(2);
+    const double s = std::hypot(k.x(), k.y());
+    const double across = s > 1e-12 ? body.rim_radius * k.z() / s : 0.0;
+    ox.push_back(value(x[i] - across * k.x()));
+    oy.push_back(value(y[i] - across * k.y()));
+    oz.push_back(value(height[i]));
+  }
+  nlohmann::json tt = nlohmann::json::array(), tx = nlohmann::json::array(), ty = nlohmann::json::array();
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    tt.push_back(value(run.t[i]));
+    tx.push_back(value(x[i]));
+    ty.push_back(value(y[i]));
+  }
+  data["table"] = {{"contact", name(table.contact)},
+                   {"tip_radius", body.tip_radius},
+                   {"rim_radius", body.rim_radius},
+                   {"origin", {{"x", ox}, {"y", oy}, {"z", oz}}},
+                   {"track", {{"t", tt}, {"x", tx}, {"y", ty}}}};
+  return data.dump();
+}
+
 // What the 3D view draws (the report's own view data, report::view_data()): the nonlinear run of
 // the configuration's body over t_end (s) at `samples` times, by the integrator `simulate`
-// chooses unasked, and the body's parts as the report draws them (a mesh from its file).
+// chooses unasked, and the body's parts as the report draws them (a mesh from its file); on a
+// table (SPEC section 16) the run on the table, with the table and P's track (table_view()).
 Result view_of(const std::string& config, double t_end, int samples) {
   const auto make = [&](CLI::App& app) -> cli::Action {
     auto* cmd = app.add_subcommand("view", "");
-    auto inputs = std::make_shared<cli::Inputs>(*cmd, std::vector<std::string>{"json"});
+    cli::InputUses uses;
+    uses.table = true;
+    auto inputs = std::make_shared<cli::Inputs>(*cmd, std::vector<std::string>{"json"}, uses);
     return [&, inputs] {
       inputs->resolve();
       if (!(std::isfinite(t_end) && t_end > 0.0)) throw InvalidInput("--t-end", "must be finite and > 0");
       if (samples < 2) throw InvalidInput("--samples", "must be an integer >= 2");
+      if (samples > kMaxPageSamples) throw InvalidInput("--samples", fmt::format("must be at most {} in the page", kMaxPageSamples));
+      std::vector<report::DrawnPart> parts;  // as `heavytop report` hands them on (cli/report_command.cpp)
+      for (const io::PartSpec& p : inputs->configuration().parts)
+        parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
+                               : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
+      if (const Table& table = inputs->table(); table.on_table()) {
+        const TableRun run = simulate_on_table(inputs->body(), table, inputs->state(),
+                                               SampleGrid{t_end, static_cast<std::size_t>(samples)});
+        cli::write_output(inputs->output(), table_view(inputs->body(), table, run.trajectory, parts));
+        return;
+      }
       SimulateOptions options;
       options.integrator = Integrator::Auto;
       const Simulation run = simulate(Model::Nonlinear, inputs->body(), inputs->state(),
                                       sample_times(t_end, static_cast<std::size_t>(samples)), options);
       if (!run.summary.ok()) throw cli::Failure(run.summary.message);
-      std::vector<report::DrawnPart> parts;  // as `heavytop report` hands them on (cli/report_command.cpp)
-      for (const io::PartSpec& p : inputs->configuration().parts)
-        parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
-                               : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
       cli::write_output(inputs->output(), report::view_data(inputs->body(), run.trajectory, parts));
     };
   };
@@ -171,8 +270,13 @@ emscripten::val to_js(const Result& r) {
   return o;
 }
 
-emscripten::val stability(const std::string& config) {
-  return to_js(run("stability", cli::add_stability_command, config, {"--format", "json"}));
+// args: the answer's options the page passes (--horizon, --max-tilt, --lifetime-horizon), as text;
+// format: "json" (the object) or "text" (the words, for people).
+emscripten::val stability(const std::string& config, const std::vector<std::string>& args, const std::string& format) {
+  if (auto no = refuse_page_args("stability", args)) return to_js(*no);
+  std::vector<std::string> all = args;
+  all.insert(all.end(), {"--format", format});
+  return to_js(run("stability", cli::add_stability_command, config, all));
 }
 
 emscripten::val js_lifetime(const std::string& config) {
@@ -189,6 +293,7 @@ emscripten::val js_view(const std::string& config, double t_end, int samples) { 
 
 // args: the simulate flags the page passes (--model, --t-end, --samples), as text.
 emscripten::val js_simulate(const std::string& config, const std::vector<std::string>& args) {
+  if (auto no = refuse_page_args("simulate", args)) return to_js(*no);
   std::vector<std::string> all = args;
   all.insert(all.end(), {"--format", "csv"});
   return to_js(run("simulate", cli::add_simulate_command, config, all));
