@@ -8,7 +8,6 @@
 // configuration holds more than those (a motor, the table, the tip's or rim's radius, the
 // answer's options), the whole configuration as the page's start (window.HEAVYTOP_CONFIG; else
 // it stays null and the page is byte for byte Python's explore()).
-#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "heavytop/answer.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/report/report.hpp"
 #include "heavytop/table.hpp"
@@ -24,16 +24,10 @@
 namespace heavytop::cli {
 namespace {
 
-struct ExploreAnswerOptions {
-  double horizon = 100.0;  // stability's defaults (AnswerOptions)
-  double max_tilt = 1.0;
-  std::optional<double> lifetime_horizon;
-};
-
 // The page's start: the configuration's sections as the page's window.heavytop takes them
 // ({body, motion, damping, table}) and the answer's options ({horizon, max_tilt,
 // lifetime_horizon}: stability's flags), as JSON that a <script> holds.
-std::string page_start(const Inputs& inputs, const ExploreAnswerOptions& o) {
+std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
   using nlohmann::json;
   const Body& b = inputs.body();
   const InitialState& s = inputs.state();
@@ -57,7 +51,7 @@ std::string page_start(const Inputs& inputs, const ExploreAnswerOptions& o) {
     config["table"] = table;
   }
   json stability = {{"horizon", o.horizon}, {"max_tilt", o.max_tilt}};
-  if (o.lifetime_horizon) stability["lifetime_horizon"] = *o.lifetime_horizon;
+  if (o.damped_horizon) stability["lifetime_horizon"] = *o.damped_horizon;
   std::string text = json{{"config", config}, {"stability", stability}}.dump();
   // Inside a <script>: no "</" (a string of the file could hold "</script>").
   for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3) text.replace(at, 2, "<\\/");
@@ -65,11 +59,11 @@ std::string page_start(const Inputs& inputs, const ExploreAnswerOptions& o) {
 }
 
 // True if the page's start holds more than HEAVYTOP_INITIAL's body, damping and motion.
-bool beyond_initial(const Inputs& inputs, const ExploreAnswerOptions& o) {
+bool beyond_initial(const Inputs& inputs, const AnswerOptions& o) {
   const Body& b = inputs.body();
   return b.damping.driven || b.tip_radius != 0.0 || b.rim_radius != 0.0 || inputs.table().on_table() ||
-         o.horizon != ExploreAnswerOptions{}.horizon || o.max_tilt != ExploreAnswerOptions{}.max_tilt ||
-         o.lifetime_horizon.has_value();
+         o.horizon != AnswerOptions{}.horizon || o.max_tilt != AnswerOptions{}.max_tilt ||
+         o.damped_horizon.has_value();
 }
 
 }  // namespace
@@ -81,11 +75,11 @@ Action add_explore_command(CLI::App& app) {
   InputUses uses;
   uses.table = true;  // the page answers a top on a table as `stability` does (SPEC section 16)
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"}, uses);
-  auto o = std::make_shared<ExploreAnswerOptions>();
+  auto o = std::make_shared<AnswerOptions>();
   // stability's answer options, which the page's answer uses (as `heavytop stability` does).
   cmd->add_option("--horizon", o->horizon, "s, how long the page's answer follows the nonlinear body (stability's --horizon)")
       ->default_str("100");
-  cmd->add_option("--lifetime-horizon", o->lifetime_horizon,
+  cmd->add_option("--lifetime-horizon", o->damped_horizon,
                   "s, a damped body's run in the page's answer (stability's --lifetime-horizon)");
   cmd->add_option("--max-tilt", o->max_tilt, "rad, the tilt past which the page's answer says it fell (stability's --max-tilt)")
       ->default_str("1");
@@ -93,10 +87,7 @@ Action add_explore_command(CLI::App& app) {
     inputs->resolve();
     if (inputs->output().empty())
       throw InvalidInput("--output", "give the page's file, e.g. --output explore.html (or - for stdout)");
-    if (!(std::isfinite(o->horizon) && o->horizon > 0.0)) throw InvalidInput("--horizon", "must be a finite number > 0");
-    if (!(o->max_tilt > 0.0 && o->max_tilt <= M_PI)) throw InvalidInput("--max-tilt", "must be in (0, pi]");
-    if (o->lifetime_horizon && !(std::isfinite(*o->lifetime_horizon) && *o->lifetime_horizon > 0.0))
-      throw InvalidInput("--lifetime-horizon", "must be a finite number > 0");
+    validate(*o);  // stability's checks, under stability's flags
     auto page = report::explorer_page(inputs->body(), inputs->state());
     if (!page) throw InvalidInput("explore", io::kExplorerPageMissing);
     const std::string mark = "/*HEAVYTOP_CONFIG*/null";

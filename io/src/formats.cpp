@@ -621,14 +621,20 @@ std::optional<std::string> explorer_page(std::string built_page, const Body& b, 
   const std::string mark = "/*HEAVYTOP_INITIAL*/null";
   const auto at = built_page.find(mark);
   if (at == std::string::npos) return std::nullopt;
+  // The tip's and rim's radii and the motor only when given, so a page of a body without them
+  // stays what it was (issue 46: a report's and Python's page dropped `driven`).
+  std::string radii;
+  if (b.tip_radius != 0.0) radii += fmt::format(", \"tip_radius\": {}", number(b.tip_radius));
+  if (b.rim_radius != 0.0) radii += fmt::format(", \"rim_radius\": {}", number(b.rim_radius));
   built_page.replace(
       at, mark.size(),
-      fmt::format("{{\"body\": {{\"A\": {}, \"B\": {}, \"C\": {}, \"mass\": {}, \"gravity\": {}, \"length\": {}}}, "
-                  "\"motion\": {{\"spin\": {}, \"theta0\": {}, \"phi0\": {}, \"theta_rate0\": {}, \"phi_rate0\": {}}}, "
+      fmt::format("{{\"body\": {{\"A\": {}, \"B\": {}, \"C\": {}, \"mass\": {}, \"gravity\": {}, \"length\": {}{}}}, "
+                  "\"motion\": {{\"spin\": {}, \"theta0\": {}, \"phi0\": {}, \"theta_rate0\": {}, \"phi_rate0\": {}{}}}, "
                   "\"damping\": {{\"transverse\": {}, \"axial\": {}, \"friction\": {}}}}}",
-                  number(b.A), number(b.B), number(b.C), number(b.mass), number(b.gravity), number(b.length),
+                  number(b.A), number(b.B), number(b.C), number(b.mass), number(b.gravity), number(b.length), radii,
                   number(s.spin), number(s.theta0), number(s.phi0), number(s.theta_rate0), number(s.phi_rate0),
-                  number(b.damping.transverse), number(b.damping.axial), number(b.damping.friction)));
+                  b.damping.driven ? ", \"driven\": true" : "", number(b.damping.transverse), number(b.damping.axial),
+                  number(b.damping.friction)));
   return built_page;
 }
 
