@@ -46,7 +46,10 @@ Action add_stability_command(CLI::App& app) {
                        : io::table_stability_text(body, table, analysis));
       return;
     }
-    const TopAnalysis analysis = analyse_top(body, inputs->state(), *options);
+    const TopAnalysis analysis = [&] {
+      ProgressBar bar("stability", answer_run_length(body, inputs->state(), *options));
+      return analyse_top(body, inputs->state(), *options, [&bar](double t) { bar.update(t); });
+    }();
     write_output(inputs->output(), inputs->format() == "json" ? io::stability_json(body, analysis)
                                                               : io::stability_text(body, analysis));
   };

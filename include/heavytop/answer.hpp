@@ -105,8 +105,10 @@ struct Answer {
 /// body's); never throws for a run that cannot go on (RunFailure: the answer is then "stays up
 /// for the horizon", AnswerCase::RunStopped, max_tilt empty and horizon the time it reached, its
 /// words saying that nothing was decided and why).
+/// `progress` (progress.hpp) is the deciding run's: it gets the simulated time (s) and may throw
+/// to stop it (Python's Ctrl-C), the exception let through.
 Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
-                       const Wander& wander, const AnswerOptions& options = {});
+                       const Wander& wander, const AnswerOptions& options = {}, const Progress& progress = {});
 
 /// Everything `heavytop stability` says, computed once for the command line, the report and
 /// Python alike: the linear models, the Lyapunov verdict, the wander and the answer.
@@ -118,7 +120,13 @@ struct TopAnalysis {
   Answer answer;                         ///< answer_question(...)
 };
 /// The analyses of `body` at the spin of `initial` and the answer; throws InvalidInput for a
-/// bad body, state or options.
-TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options = {});
+/// bad body, state or options. `progress` is answer_question()'s.
+TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options = {},
+                        const Progress& progress = {});
+
+/// s, how long the run that decides the answer will be at most (the conservative body's
+/// options.horizon, the damped body's lifetime horizon), for a progress bar; 0 when the options
+/// or the body are refused (the analysis then says why).
+double answer_run_length(const Body& body, const InitialState& initial, const AnswerOptions& options);
 
 }  // namespace heavytop

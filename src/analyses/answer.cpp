@@ -38,11 +38,21 @@ void spin_threshold(const Body& body, const LyapunovStability& lyapunov, Answer&
   a.falls_below_min_spin = lyapunov_stability(body, below).verdict == LyapunovVerdictKind::Unstable;
 }
 
+/// The damped body's run (SPEC 14: the lifetime decides) with the answer's settings.
+LifetimeOptions lifetime_options(const AnswerOptions& options) {
+  LifetimeOptions life;
+  life.horizon = options.damped_horizon;
+  life.max_tilt = options.max_tilt;
+  life.integrator = options.integrator;
+  return life;
+}
+
 /// lifetime() for the answer: its horizon is the answer's "lifetime_horizon" (`stability
 /// --lifetime-horizon`), so a refused one is named so, not "horizon" (the conservative run's).
-Lifetime lifetime_named(const Body& body, const InitialState& initial, const LifetimeOptions& options) {
+Lifetime lifetime_named(const Body& body, const InitialState& initial, const LifetimeOptions& options,
+                        const Progress& progress) {
   try {
-    return lifetime(body, initial, options);
+    return lifetime(body, initial, options, progress);
   } catch (const InvalidInput& e) {
     if (e.key() == "horizon") throw InvalidInput("lifetime_horizon", e.rule());
     throw;
@@ -82,7 +92,7 @@ void validate(const AnswerOptions& options) {
 }
 
 Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
-                       const Wander& wander, const AnswerOptions& options) {
+                       const Wander& wander, const AnswerOptions& options, const Progress& progress) {
   validate(options);
   Answer a;
   a.spin = initial.spin;
@@ -95,12 +105,9 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
   spin_threshold(body, lyapunov, a);
 
   if (a.damped) {  // SPEC 14: the lifetime (SPEC 8) decides
-    LifetimeOptions life_options;
-    life_options.horizon = options.damped_horizon;
-    life_options.max_tilt = options.max_tilt;
-    life_options.integrator = options.integrator;
+    const LifetimeOptions life_options = lifetime_options(options);
     try {
-      const Lifetime life = lifetime_named(body, initial, life_options);
+      const Lifetime life = lifetime_named(body, initial, life_options, progress);
       a.horizon = life.horizon;
       a.critical_spin = life.critical_spin;
       a.max_tilt = life.largest_tilt;
@@ -145,7 +152,8 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
   validate_horizon(body, initial, options.horizon, "horizon");
   try {
     const TiltExtremes run =
-        tilt_extremes(Integrator::Dopri5, body, initial, options.horizon, a.fall_threshold, options.integrator);
+        tilt_extremes(Integrator::Dopri5, body, initial, options.horizon, a.fall_threshold, options.integrator,
+                      nullptr, progress);
     a.max_tilt = run.max_tilt;
     if (run.exceeded) {
       a.verdict = AnswerVerdict::Falls;
@@ -160,7 +168,8 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
   return a;
 }
 
-TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options) {
+TopAnalysis analyse_top(const Body& body, const InitialState& initial, const AnswerOptions& options,
+                        const Progress& progress) {
   validate(initial);
   validate(options);
   TopAnalysis t;
@@ -168,8 +177,17 @@ TopAnalysis analyse_top(const Body& body, const InitialState& initial, const Ans
   t.models = analyse_stability(body, initial.spin);
   t.lyapunov = analyse_lyapunov(body, initial.spin);
   t.wander = axis_wander(body, initial, options.horizon, options.integrator);
-  t.answer = answer_question(body, initial, t.lyapunov, t.wander, options);
+  t.answer = answer_question(body, initial, t.lyapunov, t.wander, options, progress);
   return t;
+}
+
+double answer_run_length(const Body& body, const InitialState& initial, const AnswerOptions& options) {
+  if (body.damping.conservative()) return options.horizon;
+  try {
+    return spin_decay(body, initial, lifetime_options(options)).horizon;
+  } catch (const InvalidInput&) {
+    return 0.0;
+  }
 }
 
 }  // namespace heavytop
