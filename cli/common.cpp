@@ -257,6 +257,7 @@ void Inputs::resolve(bool allow_general) {
   body.damping = damping;
   body.tip_radius = tip_radius;
   body.rim_radius = rim_radius;
+  if (table.on_table()) body.touch_tilt = io::touch_tilt(config_.parts, body);
   validate(body);
   validate(state);
   if (table.on_table()) validate(table, body);

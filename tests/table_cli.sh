@@ -78,4 +78,37 @@ check "flat rim" refuse motion.theta0 simulate --contact rolling --rim-radius 0.
 "$H" simulate --t-end 0.1 --samples 3 > pivot.csv
 "$H" simulate --t-end 0.1 --samples 3 --tip-radius 0.002 > pivot_tip.csv
 check "pivot with a tip radius: same motion" cmp -s pivot.csv pivot_tip.csv
+
+# A body of parts on a table falls where another part touches the table (SPEC 16), not at
+# --max-tilt: a cone tip (height h) under a disc of radius R2 on a tip of radius r touches at
+# atan2(h, R2) + asin(r / hypot(h, R2)), the disc's lower rim on the table.
+cat > parts.toml <<'TOML'
+[body]
+tip_radius = 0.002
+[[body.part]]
+shape = "cone"
+radius = 0.01
+height = 0.03
+z0 = 0.0
+density = 700.0
+[[body.part]]
+shape = "cylinder"
+radius = 0.035
+height = 0.008
+z0 = 0.03
+density = 700.0
+[motion]
+spin = 30.0
+theta0 = 0.1
+[table]
+contact = "sliding"
+friction = 0.3
+TOML
+"$H" stability --config parts.toml --max-tilt 1.2 --format json > parts.json
+check "a body of parts falls where its disc touches the table, not at --max-tilt" python3 -c "
+import json, math
+a = json.load(open('parts.json'))['answer']
+touch = math.atan2(0.03, 0.035) + math.asin(0.002 / math.hypot(0.03, 0.035))
+assert a['verdict'] == 'falls' and abs(a['table']['final_tilt'] - touch) < 1e-9 and abs(a['max_tilt'] - touch) < 1e-9, (a, touch)
+assert 'where another of its parts touches the table' in a['reason'], a['reason']"
 finish

@@ -341,5 +341,41 @@ TEST(Assembly, ProductsAndOffsetAreReportedAndRefused) {
   EXPECT_FALSE(tiny.general());
 }
 
+// Where another part reaches the table (SPEC 16: on a table a body of parts "falls" there): a
+// cone tip under a wider disc touches at the disc's lower rim, closed form
+// R2 sin(theta) - h cos(theta) = r, theta = atan2(h, R2) + asin(r / hypot(h, R2)).
+TEST(Parts, TouchTiltIsWhereTheWidestRimReachesTheTable) {
+  const double h = 0.03, R2 = 0.035;
+  const std::vector<SolidPart> top = {
+      {.shape = PartShape::Cone, .radius = 0.01, .height = h, .z0 = 0.0, .density = 700.0},
+      {.shape = PartShape::Cylinder, .radius = R2, .height = 0.008, .z0 = h, .density = 700.0},
+  };
+  for (const double r : {0.0, 0.002}) {
+    const std::optional<double> touch = touch_tilt(top, r, 0.0);
+    ASSERT_TRUE(touch);
+    EXPECT_NEAR(*touch, std::atan2(h, R2) + std::asin(r / std::hypot(h, R2)), 1e-11) << r;
+  }
+  // A ball on its own never touches with anything else; a ball with a stem above touches with
+  // the stem's top rim before upside down (a tippe top's stem, issue 43's second contact).
+  const std::vector<SolidPart> ball = {{.shape = PartShape::Sphere, .radius = 0.015, .z0 = -0.015, .density = 1000.0}};
+  EXPECT_FALSE(touch_tilt(ball, 0.015, 0.0));
+  std::vector<SolidPart> tippe = ball;
+  tippe.push_back({.shape = PartShape::Cylinder, .radius = 0.004, .height = 0.01, .z0 = 0.012, .density = 1000.0});
+  const std::optional<double> stem = touch_tilt(tippe, 0.015, 0.0);
+  ASSERT_TRUE(stem);
+  // The stem's top rim (z 0.022, radius 0.004) reaches it: 0.015 + R cos(theta + atan2(a, z)) = 0.
+  const double z = 0.022, a = 0.004, R = std::hypot(z, a);
+  EXPECT_NEAR(*stem, std::acos(-0.015 / R) - std::atan2(a, z), 1e-11);
+  // A part below the tip with the body upright: refused naming it.
+  const std::vector<SolidPart> sunk = {{.shape = PartShape::Cylinder, .radius = 0.01, .height = 0.01, .z0 = -0.02,
+                                        .density = 1000.0}};
+  try {
+    touch_tilt(sunk, 0.005, 0.0);
+    FAIL() << "not refused";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.key(), "body.part[0]");
+  }
+}
+
 }  // namespace
 }  // namespace heavytop

@@ -2,6 +2,7 @@
 /// \file
 /// The body: the immutable model every algorithm takes by `const Body&`.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -69,6 +70,11 @@ struct Body {
   /// m, >= 0: or the radius of the ring about the axis in the plane z = 0 through O (thickened
   /// by tip_radius: a coin, a disc); 0: the sphere above.
   double rim_radius = 0.0;
+  /// rad, the tilt at which another part of the body first reaches the table the tip stands on
+  /// (SPEC section 16: from the parts, touch_tilt() in mass_properties.hpp): on a table "falls"
+  /// means that, not AnswerOptions::max_tilt. nullopt: not known (a body given by its moments,
+  /// or one with a mesh part), or no part ever reaches the table before upside down.
+  std::optional<double> touch_tilt;
 
   /// N m, the gravitational moment m g R (signed like R).
   double mgR() const noexcept { return mass * gravity * length; }

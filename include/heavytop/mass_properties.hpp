@@ -57,6 +57,17 @@ struct SolidPart {
 /// e.g. "body.part[0]".
 void validate(const SolidPart& part, const std::string& key);
 
+/// rad, the smallest tilt in (0, pi] at which a point of one of `parts` goes below the table
+/// that the body stands on with its tip (a sphere of radius tip_radius about O, or a ring of
+/// radius rim_radius about the axis thickened by tip_radius; SPEC section 16): where the tip stops
+/// being the lowest point and the body, on a table, has fallen over onto that part. A part's
+/// lowest point at tilt theta is that of its outline's rings (z, radius):
+/// z cos(theta) - radius sin(theta) (a sphere's centre z_c: z_c cos(theta) - radius), O being
+/// tip_radius + rim_radius sin(theta) above the table. Found on a scan of 4096 tilts, then by
+/// bisection to 1e-12 rad; a part reaching the table counts below 1e-9 of the body's size (the
+/// tip's own part touches the table at 0). nullopt when no part does before pi. Validates first.
+std::optional<double> touch_tilt(const std::vector<SolidPart>& parts, double tip_radius, double rim_radius);
+
 /// The part's mass properties about O (closed forms, docs/mass-properties.md). Validates first.
 MassProperties mass_properties(const SolidPart& part, const std::string& key);
 

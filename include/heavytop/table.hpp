@@ -159,7 +159,10 @@ struct TableAnswer {
   double max_tilt = 0.0;        ///< rad, the largest tilt of the run
   double final_tilt = 0.0;      ///< rad, at the run's end
   double final_spin = 0.0;      ///< rad/s, w . k at the run's end
-  double fall_threshold = 1.0;  ///< rad, AnswerOptions::max_tilt (a fall needs length > 0)
+  /// rad, the tilt where another part reaches the table (Body::touch_tilt), else
+  /// AnswerOptions::max_tilt (a fall needs length > 0)
+  double fall_threshold = 1.0;
+  bool part_touches = false;    ///< fall_threshold is where another part reaches the table
   std::optional<double> falls_at;       ///< s, the tilt passes fall_threshold from below
   std::optional<double> upright_at;     ///< s, from then on the tilt stays below kSleepingTilt
   std::optional<double> turns_over_at;  ///< s, the tilt passes pi/2

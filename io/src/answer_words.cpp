@@ -184,8 +184,8 @@ std::string table_answer_reason(const TableAnswer& a, const Table& table) {
                          "and landing are not modelled).",
                          start, time_words(*a.leaves_at));
     case AnswerVerdict::Falls:
-      return fmt::format("{}, this top tilts past {} at t = {}.", start, angle_words(a.fall_threshold),
-                         time_words(*a.falls_at));
+      return fmt::format("{}, this top tilts past {} at t = {}{}.", start, angle_words(a.fall_threshold),
+                         time_words(*a.falls_at), a.part_touches ? ", where another of its parts touches the table" : "");
     case AnswerVerdict::TurnsOver:
       return a.ends_upside_down
                  ? fmt::format("{}, this top passes a quarter turn at t = {} and ends spinning upside down on its "

@@ -6,6 +6,16 @@
 
 namespace heavytop::io {
 
+std::optional<double> touch_tilt(const std::vector<PartSpec>& parts, const Body& body) {
+  std::vector<SolidPart> solids;
+  for (const PartSpec& part : parts) {
+    if (part.mesh) return std::nullopt;
+    solids.push_back(part.solid);
+  }
+  if (solids.empty()) return std::nullopt;
+  return heavytop::touch_tilt(solids, body.tip_radius, body.rim_radius);
+}
+
 AssembledBody assemble_parts(const std::vector<PartSpec>& parts) {
   AssembledBody out;
   for (std::size_t i = 0; i < parts.size(); ++i) {

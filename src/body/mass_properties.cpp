@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
 
@@ -216,6 +217,66 @@ MassProperties mass_properties(const TriangleMesh& mesh, std::optional<double> d
   if (!std::isfinite(p.mass) || !p.inertia.allFinite())
     throw InvalidInput(key, "its mass or moments of inertia overflow a double");
   return p;
+}
+
+namespace {
+
+/// m, the height above O's level, along the upward vertical, of the lowest point of `part` at
+/// tilt theta (the axis leaning by theta; every azimuth alike for a solid of revolution).
+double lowest_point(const SolidPart& part, double c, double s) {
+  const double top = part.z0 + part.height;
+  auto ring = [c, s](double z, double radius) { return z * c - radius * s; };
+  switch (part.shape) {
+    case PartShape::Sphere: return (part.z0 + part.radius) * c - part.radius;
+    case PartShape::Cone:
+      return part.apex_up ? std::min(ring(part.z0, part.radius), ring(top, 0.0))
+                          : std::min(ring(part.z0, 0.0), ring(top, part.radius));
+    case PartShape::Cylinder:
+    case PartShape::Tube: break;
+  }
+  return std::min(ring(part.z0, part.radius), ring(top, part.radius));
+}
+
+}  // namespace
+
+std::optional<double> touch_tilt(const std::vector<SolidPart>& parts, double tip_radius, double rim_radius) {
+  double size = tip_radius + rim_radius;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    validate(parts[i], fmt::format("body.part[{}]", i));
+    size = std::max({size, std::abs(parts[i].z0), std::abs(parts[i].z0 + parts[i].height), parts[i].radius});
+  }
+  // m, the height of part k's lowest point over the table (< 0: below it).
+  auto clearance = [&](std::size_t k, double theta) {
+    return tip_radius + rim_radius * std::sin(theta) + lowest_point(parts[k], std::cos(theta), std::sin(theta));
+  };
+  const double below = -1e-9 * size;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    if (tip_radius + lowest_point(parts[i], 1.0, 0.0) < below)
+      throw InvalidInput(fmt::format("body.part[{}]", i), "reaches below the tip with the body upright: it, not the "
+                                                          "tip, would stand on the table (lower it less, or give "
+                                                          "body.tip_radius)");
+  constexpr int kScan = 4096;
+  double lo = 0.0;
+  for (int i = 1; i <= kScan; ++i) {
+    const double theta = std::numbers::pi * i / kScan;
+    std::size_t culprit = parts.size();
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      if (clearance(k, theta) < below && (culprit == parts.size() || clearance(k, theta) < clearance(culprit, theta)))
+        culprit = k;
+    if (culprit == parts.size()) {
+      lo = theta;
+      continue;
+    }
+    // The root of the part that went below (the margin only told the tip's own part, at 0 to
+    // rounding, from one that really reaches the table).
+    double hi = theta;
+    while (hi - lo > 1e-13) {
+      const double mid = 0.5 * (lo + hi);
+      (clearance(culprit, mid) < 0.0 ? hi : lo) = mid;
+    }
+    return hi;
+  }
+  return std::nullopt;
 }
 
 BodyAssembly assemble(const std::vector<MassProperties>& parts) {

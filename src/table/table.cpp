@@ -553,6 +553,7 @@ class AnswerWatch {
       const Instant in = instant_of(view.params, y);
       const V3 P = contact_point(y, in);
       a_.track = std::max(a_.track, std::hypot(P[0], P[1]));
+      const double before_max = a_.max_tilt;
       a_.max_tilt = std::max(a_.max_tilt, tilt);
       const double t_before = t_;
       const double before = tilt_;
@@ -564,6 +565,7 @@ class AnswerWatch {
       if (can_fall && !a_.falls_at && before < a_.fall_threshold && tilt >= a_.fall_threshold) {
         a_.falls_at = crossing(a_.fall_threshold);
         view.state_at(*a_.falls_at, y);
+        a_.max_tilt = std::max(before_max, tilt_of(y));  // the run ends at the crossing, as the pivot's does
         finish(*a_.falls_at, y);
         return false;
       }
@@ -606,7 +608,8 @@ TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const I
   out.stability = table_stability(body, table, initial.spin);
   TableAnswer& a = out.answer;
   a.spin = initial.spin;
-  a.fall_threshold = options.max_tilt;
+  a.fall_threshold = body.touch_tilt.value_or(options.max_tilt);
+  a.part_touches = body.touch_tilt.has_value();
   a.horizon = options.horizon;
   a.min_spin = out.stability.upright.critical_spin;
   detail::TableIntegration integration(body, table, initial, options.horizon, options.integrator);

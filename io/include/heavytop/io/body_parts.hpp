@@ -25,6 +25,11 @@ struct AssembledBody {
 /// (top.stl)") for the first bad part.
 AssembledBody assemble_parts(const std::vector<PartSpec>& parts);
 
+/// rad, where another of the parts first reaches the table (touch_tilt(), mass_properties.hpp)
+/// for `body`'s tip and rim; nullopt for no parts or a mesh among them (its outline is not a
+/// solid of revolution's).
+std::optional<double> touch_tilt(const std::vector<PartSpec>& parts, const Body& body);
+
 /// The same for a body given by its moments about O (A, B, C, mass, length) and SPEC section
 /// 11's keys ("body.Ixy" ..., default 0): centre (offset_x, offset_y, length), the tensor
 /// [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]].
