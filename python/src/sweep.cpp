@@ -140,18 +140,23 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
   std::vector<SweepAxis> axes(keys.size());
   bool cli_grid = true;
   for (std::size_t k = 0; k < keys.size(); ++k) cli_grid = is_cli_grid(keys[k], axes[k]) && cli_grid;
-  std::size_t total = 1;
-  for (const auto& k : keys) total *= k.size();
-  if (total > 100'000'000) throw InvalidInput("vary", "the grid must have at most 100000000 points");
-  // Every point is checked before anything is computed, as the command line does.
+  // Every point is checked before anything is computed, as the command line does. The grid's
+  // size first, by the command line's own check (validate_sweep: at most kMaxSweepPoints,
+  // counted in floating point, so that no product of the counts wraps around): for any values,
+  // with axes of their counts at their first values (its corners then are grid point 0, which
+  // the check of every point below starts with anyway).
   without_gil([&] {
     if (cli_grid) {
       validate_sweep(body, state, axes, options);
     } else {
-      validate_sweep(body, state, {}, options);
+      std::vector<SweepAxis> counts;
+      for (const auto& k : keys) counts.push_back(SweepAxis{k.key, k.data()[0], k.data()[0], k.size()});
+      validate_sweep(body, state, counts, options);
+      const std::size_t total = grid_size(counts);
       for (std::size_t i = 0; i < total; ++i) validate_sweep(body, state, point_axes(keys, i), options);
     }
   });
+  const std::size_t total = grid_size(axes);  // at most kMaxSweepPoints, checked above
 
   StabilityMap map{.axes = {}, .nonlinear = nonlinear, .verdicts = std::vector<SweepVerdict>(total)};
   for (const auto& k : keys) map.axes.push_back(MapAxis{.key = k.key, .values = {k.data(), k.data() + k.size()}});

@@ -1,12 +1,19 @@
-"""Hostile input, round 3 (issue 30), in the Python adapter: the mesh files that crashed the
-command line (and aborted the interpreter: a binary PLY hit an assertion inside Assimp) are
-read or refused with InvalidInput naming the part and the file; a map that is a device is
-refused at once instead of read forever (4 GB in 8 s)."""
+"""Hostile input in the Python adapter.
+
+Round 3 (issue 30): the mesh files that crashed the command line (and aborted the interpreter:
+a binary PLY hit an assertion inside Assimp) are read or refused with InvalidInput naming the
+part and the file; a map that is a device is refused at once instead of read forever (4 GB in
+8 s).
+
+Round 4 (issue 46): a sweep whose grid has more points than an integer holds is refused as the
+command line refuses it (its size wrapped around to 0: a map of no points)."""
 import struct
 
+import numpy as np
 import pytest
 
 import heavytop
+from conftest import cli_error
 
 VERTICES = [(0, 0, 0), (1, 0, 0), (1, 2, 0), (0, 2, 0), (0, 0, 3), (1, 0, 3), (1, 2, 3), (0, 2, 3)]
 QUADS = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
@@ -78,3 +85,40 @@ def test_the_report_at_such_a_spin_leaves_the_diagrams_nonlinear_verdicts_out_an
     # The stability diagram's nonlinear verdicts at 1.8e19 rad/s ran for hours.
     page = heavytop.report(heavytop.Body(**TOY), tmp_path / "fast", spin=1.8e19)
     assert "The nonlinear verdicts are left out: at spins up to 2.88e+19 rad/s" in open(page).read()
+
+
+# ---- round 4 (issue 46) -------------------------------------------------------------------------
+
+TOP = heavytop.example_toy_top()
+LIMIT = 100_000_000  # the most grid points a sweep may have (include/heavytop/sweep.hpp: kMaxSweepPoints)
+
+
+def test_a_grid_of_more_points_than_an_integer_holds_is_refused():
+    # 2^22 x 2^22 x 2^20 = 2^64 points: their product in 64 bits is 0, and the sweep returned a
+    # map of shape (4194304, 4194304, 1048576) with no points.
+    vary = {"spin": np.linspace(100.0, 300.0, 2**22), "length": np.linspace(0.01, 0.03, 2**22),
+            "mass": np.linspace(0.05, 0.07, 2**20)}
+    with pytest.raises(heavytop.InvalidInput) as error:
+        heavytop.sweep(TOP, vary)
+    assert error.value.key == "vary"
+    points = float(2**22) * 2**22 * 2**20
+    assert error.value.rule == f"the grid has {points:g} points, more than the {LIMIT} a sweep may have"
+
+
+def test_a_grid_just_over_the_limit_is_refused_by_the_same_rule():
+    vary = {"spin": np.linspace(100.0, 300.0, 10_001), "length": np.linspace(0.01, 0.03, LIMIT // 10_000)}
+    with pytest.raises(heavytop.InvalidInput) as error:
+        heavytop.sweep(TOP, vary)
+    points = 10_001 * (LIMIT // 10_000)
+    assert str(error.value) == f"vary: the grid has {points:g} points, more than the {LIMIT} a sweep may have"
+
+
+def test_the_command_lines_grid_too_large_for_an_integer_gets_its_message():
+    counts = {"spin": (100.0, 300.0, 2**22), "length": (0.01, 0.03, 2**22), "mass": (0.05, 0.07, 2**20)}
+    vary = {key: heavytop.grid_values(*grid) for key, grid in counts.items()}  # the CLI's very values
+    with pytest.raises(heavytop.InvalidInput) as error:
+        heavytop.sweep(TOP, vary, spin=200.0)
+    args = ["sweep", "--spin", "200"]
+    for key, (start, stop, count) in counts.items():
+        args += ["--vary", f"{key}={start!r}:{stop!r}:{count}"]
+    assert str(error.value) == cli_error(*args)
