@@ -608,7 +608,10 @@ def explore(body: "Body | Configuration", path: "os.PathLike[str] | str", *, spi
 
         body        a Body (SI units: A, B, C kg m^2, mass kg, length m, gravity m/s^2, damping
                     N m s and N m), or a Configuration from load() (its body and its motion)
-        path        the page's file
+        path        the page's file, written as --output writes it: through a temporary name
+                    beside it and a rename, so that a failed write leaves an existing file as it
+                    was (a device or pipe is written directly; a folder raises InvalidInput,
+                    a write that fails OSError)
         spin        rad/s, the spin w0 (or spin_rpm in rpm; not both); theta0, phi0 rad and
                     theta_rate0, phi_rate0 rad/s: the initial state (default 0, or the
                     Configuration's)
@@ -630,6 +633,5 @@ def explore(body: "Body | Configuration", path: "os.PathLike[str] | str", *, spi
     page = _core.explorer_page(_explorer_page_file(), body, state["spin"], state["theta0"], state["phi0"],
                                state["theta_rate0"], state["phi_rate0"])
     path = os.fspath(path)
-    with open(path, "wb") as f:
-        f.write(page)
+    _core.write_file(os.fsencode(path), page, "path")  # as --output: a temporary name, then a rename
     return path

@@ -6,8 +6,17 @@ part and the file; a map that is a device is refused at once instead of read for
 8 s).
 
 Round 4 (issue 46): a sweep whose grid has more points than an integer holds is refused as the
-command line refuses it (its size wrapped around to 0: a map of no points)."""
+command line refuses it (its size wrapped around to 0: a map of no points); every file the
+adapter writes goes through a temporary name and a rename as --output does (a folder is refused
+with InvalidInput, a write cut short by a file-size limit leaves the old file, a pipe is written
+directly and stays a pipe)."""
+import os
+import stat
 import struct
+import subprocess
+import sys
+import tempfile
+import threading
 
 import numpy as np
 import pytest
@@ -122,3 +131,100 @@ def test_the_command_lines_grid_too_large_for_an_integer_gets_its_message():
     for key, (start, stop, count) in counts.items():
         args += ["--vary", f"{key}={start!r}:{stop!r}:{count}"]
     assert str(error.value) == cli_error(*args)
+
+
+def needs_explorer_page():
+    from heavytop import _api
+    if not _api._explorer_page_file():
+        pytest.skip("this build has no explorer page (Emscripten)")
+
+
+def motion_view():
+    view = heavytop.simulate(TOP, spin=200.0, theta0=0.05, t_end=0.2, samples=21).view()
+    if not view.html.startswith("<!doctype"):
+        pytest.skip("this build has no page script (npm)")
+    return view
+
+
+def explore():
+    needs_explorer_page()
+    return lambda path: heavytop.explore(TOP, path, spin=200.0)
+
+
+def report_view():
+    with tempfile.TemporaryDirectory(prefix="heavytop-test-report-") as folder:
+        return heavytop.show(TOP, folder, spin=200.0, t_end=0.2)  # the page with its files inlined
+
+
+# Every writer of the adapter by name: what makes it ready to write, giving a function of the
+# path that writes there and returns the path. (report() writes its folder's files in C++,
+# through the same temporary names and renames.)
+WRITERS = {"explore": explore, "MotionView.save": lambda: motion_view().save,
+           "ReportView.save": lambda: report_view().save}
+
+
+@pytest.mark.parametrize("writer", sorted(WRITERS))
+def test_a_folder_is_refused_naming_the_path(tmp_path, writer):
+    (tmp_path / "inside").write_text("kept")
+    with pytest.raises(heavytop.InvalidInput) as error:
+        WRITERS[writer]()(tmp_path)
+    assert str(error.value) == f"path: '{tmp_path}' is a folder"
+    assert os.listdir(tmp_path) == ["inside"] and (tmp_path / "inside").read_text() == "kept"
+
+
+@pytest.mark.parametrize("writer", sorted(WRITERS))
+def test_a_pipe_is_written_directly_and_stays_a_pipe(tmp_path, writer):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    received = []
+    write = WRITERS[writer]()
+    reader = threading.Thread(target=lambda: received.append(open(fifo, "rb").read()), daemon=True)
+    reader.start()
+    assert write(fifo) == str(fifo)
+    reader.join(10.0)
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode) and os.listdir(tmp_path) == ["pipe"]
+    assert received and received[0].lower().startswith(b"<!doctype html>") and received[0].rstrip().endswith(b"</html>")
+
+
+# In a process whose files may grow to `limit` bytes (RLIMIT_FSIZE; SIGXFSZ ignored, so a write
+# past it fails with EFBIG instead of killing the process): the writer, then what it raised.
+UNDER_A_LIMIT = """
+import resource, signal, sys
+sys.path[:0] = [sys.argv[1]]
+import test_hostile_input as t
+name, path, limit = sys.argv[2], sys.argv[3], int(sys.argv[4])
+write = t.WRITERS[name]()
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+resource.setrlimit(resource.RLIMIT_FSIZE, (limit, resource.RLIM_INFINITY))
+try:
+    write(path)
+    print("wrote")
+except BaseException as e:
+    print(type(e).__name__ + ": " + str(e))
+"""
+
+
+@pytest.mark.parametrize("writer", sorted(WRITERS))
+def test_a_write_cut_short_by_a_file_size_limit_leaves_the_old_file(tmp_path, writer):
+    page = tmp_path / "page.html"
+    WRITERS[writer]()(page)
+    size = page.stat().st_size
+    limit = min(1 << 20, size // 2)  # 1 MB, or less for a page smaller than 2 MB
+    assert size > limit
+    old = b"the old page, kept whole\n"
+    page.write_bytes(old)
+    result = subprocess.run([sys.executable, "-c", UNDER_A_LIMIT, os.path.dirname(__file__), writer, str(page),
+                             str(limit)], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert page.read_bytes() == old  # was cut at the limit: a page missing its end
+    assert os.listdir(tmp_path) == ["page.html"]  # no temporary file, no lock file left
+    said = result.stdout.strip().splitlines()[-1]
+    assert said.startswith(f"OSError: path: cannot write '{page}'") and "File too large" in said, said
+
+
+def test_a_report_folder_that_is_a_file_is_refused_naming_the_folder(tmp_path):
+    (tmp_path / "file").write_text("kept")
+    with pytest.raises(heavytop.InvalidInput) as error:
+        heavytop.report(TOP, tmp_path / "file", spin=200.0, t_end=0.2)
+    assert str(error.value) == f"folder: cannot create the folder '{tmp_path / 'file'}'"  # not --output
+    assert (tmp_path / "file").read_text() == "kept"
