@@ -153,7 +153,12 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
       for (const auto& k : keys) counts.push_back(SweepAxis{k.key, k.data()[0], k.data()[0], k.size()});
       validate_sweep(body, state, counts, options);
       const std::size_t total = grid_size(counts);
-      for (std::size_t i = 0; i < total; ++i) validate_sweep(body, state, point_axes(keys, i), options);
+      // A few microseconds a point: minutes for the largest grids, so Ctrl-C is heard here too.
+      const auto poll = poll_signals();
+      for (std::size_t i = 0; i < total; ++i) {
+        validate_sweep(body, state, point_axes(keys, i), options);
+        poll(0.0);
+      }
     }
   });
   const std::size_t total = grid_size(axes);  // at most kMaxSweepPoints, checked above
