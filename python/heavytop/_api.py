@@ -221,8 +221,10 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
 
         body        Body (SI units): the base the grid varies
         vary        {KEY: values} with one to three keys, each a body key (A, B, C, mass, gravity,
-                    length), "spin", or a ratio "B/A" or "C/A" (the numerator changes, the
-                    denominator is held at the body's value); values a 1-D array (SI units).
+                    length), "spin", "spin_rpm" (values in rpm: the column "spin" in rad/s, as
+                    the command line's spin_rpm), or a ratio "B/A" or "C/A" (the numerator
+                    changes, the denominator is held at the body's value); values a 1-D array
+                    (SI units).
                     The grid is the product of the arrays, the first key slowest (dict order).
       Motion (keyword only): spin (rad/s), theta0, phi0 (rad), theta_rate0, phi_rate0 (rad/s),
                     the base state (default 0)

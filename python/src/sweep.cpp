@@ -15,6 +15,7 @@
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/units.hpp"
 #include "interrupt.hpp"
 
 namespace heavytop::python {
@@ -69,6 +70,12 @@ std::vector<VariedKey> varied_keys(const py::dict& vary) {
     }
     if (!values || values.ndim() != 1 || values.size() < 1 || values.size() > 100'000'000)
       throw InvalidInput("vary", fmt::format("the values of '{}' must be a 1-D array of 1 to 100000000 numbers", key));
+    if (key == "spin_rpm") {  // as the command line's spin_rpm=START:STOP:COUNT: the axis "spin", in rad/s
+      Values spins(values.size());
+      for (py::ssize_t i = 0; i < values.size(); ++i) spins.mutable_data()[i] = rad_per_s_from_rpm(values.data()[i]);
+      keys.push_back({"spin", std::move(spins)});
+      continue;
+    }
     keys.push_back({key, std::move(values)});
   }
   return keys;

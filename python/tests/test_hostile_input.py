@@ -228,3 +228,16 @@ def test_a_report_folder_that_is_a_file_is_refused_naming_the_folder(tmp_path):
         heavytop.report(TOP, tmp_path / "file", spin=200.0, t_end=0.2)
     assert str(error.value) == f"folder: cannot create the folder '{tmp_path / 'file'}'"  # not --output
     assert (tmp_path / "file").read_text() == "kept"
+
+
+def test_a_spin_in_rpm_is_the_spin_in_rad_s():
+    # spin_rpm passed the key's check and was then ignored: every point judged at the base spin 0.
+    rpms = np.array([100.0, 3000.0, 20000.0])
+    in_rpm = heavytop.sweep(TOP, {"spin_rpm": rpms, "mass": [0.05, 0.06]})
+    in_rad_s = heavytop.sweep(TOP, {"spin": [heavytop.rpm(x) for x in rpms], "mass": [0.05, 0.06]})
+    assert in_rpm.columns == in_rad_s.columns and in_rpm.shape == in_rad_s.shape == (3, 2)
+    for column in in_rad_s.columns:
+        np.testing.assert_array_equal(in_rpm[column], in_rad_s[column])
+    assert in_rad_s["linearized"].any() and not in_rad_s["linearized"].all()  # the spins decide
+    with pytest.raises(heavytop.InvalidInput, match="^vary: 'spin' is varied twice$"):
+        heavytop.sweep(TOP, {"spin": [1.0, 2.0], "spin_rpm": [100.0, 200.0]})
