@@ -1132,6 +1132,7 @@ class TableTrajectory(Trajectory):
         return (f"TableTrajectory(contact={self._settings.get('contact')!r}, samples={len(self._columns['t'])}, "
                 f"columns={self.columns!r}, summary={self._summary.report!r})")
 
+
 def _save(path: "os.PathLike[str] | str", page: str) -> str:
     from . import _core
     path = os.fspath(path)
