@@ -221,8 +221,10 @@ def sweep(body: Body, vary: Mapping[str, npt.ArrayLike], *, spin: float = 0.0, t
 
         body        Body (SI units): the base the grid varies
         vary        {KEY: values} with one to three keys, each a body key (A, B, C, mass, gravity,
-                    length), "spin", or a ratio "B/A" or "C/A" (the numerator changes, the
-                    denominator is held at the body's value); values a 1-D array (SI units).
+                    length), "spin", "spin_rpm" (values in rpm: the column "spin" in rad/s, as
+                    the command line's spin_rpm), or a ratio "B/A" or "C/A" (the numerator
+                    changes, the denominator is held at the body's value); values a 1-D array
+                    (SI units).
                     The grid is the product of the arrays, the first key slowest (dict order).
       Motion (keyword only): spin (rad/s), theta0, phi0 (rad), theta_rate0, phi_rate0 (rad/s),
                     the base state (default 0)
@@ -608,7 +610,10 @@ def explore(body: "Body | Configuration", path: "os.PathLike[str] | str", *, spi
 
         body        a Body (SI units: A, B, C kg m^2, mass kg, length m, gravity m/s^2, damping
                     N m s and N m), or a Configuration from load() (its body and its motion)
-        path        the page's file
+        path        the page's file, written as --output writes it: through a temporary name
+                    beside it and a rename, so that a failed write leaves an existing file as it
+                    was (a device or pipe is written directly; a folder raises InvalidInput,
+                    a write that fails OSError)
         spin        rad/s, the spin w0 (or spin_rpm in rpm; not both); theta0, phi0 rad and
                     theta_rate0, phi_rate0 rad/s: the initial state (default 0, or the
                     Configuration's)
@@ -630,6 +635,5 @@ def explore(body: "Body | Configuration", path: "os.PathLike[str] | str", *, spi
     page = _core.explorer_page(_explorer_page_file(), body, state["spin"], state["theta0"], state["phi0"],
                                state["theta_rate0"], state["phi_rate0"])
     path = os.fspath(path)
-    with open(path, "wb") as f:
-        f.write(page)
+    _core.write_file(os.fsencode(path), page, "path")  # as --output: a temporary name, then a rename
     return path

@@ -15,6 +15,7 @@ import copy
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 import html
+import os
 from typing import Any, Dict, Iterator, Optional, Tuple
 
 import numpy as np
@@ -1131,6 +1132,14 @@ class TableTrajectory(Trajectory):
         return (f"TableTrajectory(contact={self._settings.get('contact')!r}, samples={len(self._columns['t'])}, "
                 f"columns={self.columns!r}, summary={self._summary.report!r})")
 
+
+def _save(path: "os.PathLike[str] | str", page: str) -> str:
+    from . import _core
+    path = os.fspath(path)
+    _core.write_file(os.fsencode(path), page.encode("utf-8"), "path")
+    return path
+
+
 class MotionView:
     """One trajectory in the report's 3D view, as one self-contained HTML document (the report's
     page script heavytop-report.js, three.js inside, and the motion's data inlined): shown inline
@@ -1180,11 +1189,11 @@ class MotionView:
             " const s = document.createElement('script'); s.textContent = document.getElementById('page-script').textContent;"
             " document.body.appendChild(s); })();</script></body></html>")
 
-    def save(self, path: str) -> str:
-        """Writes the self-contained page to `path` (one file, opens offline); returns path."""
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(self.html)
-        return path
+    def save(self, path: "os.PathLike[str] | str") -> str:
+        """Writes the self-contained page to `path` (one file, opens offline); returns path. As
+        the command line writes --output: through a temporary name beside it and a rename (a
+        failed write leaves an existing file as it was); a folder raises InvalidInput."""
+        return _save(path, self.html)
 
     def _repr_html_(self) -> str:
         if not self.html.startswith("<!doctype"):
@@ -1463,7 +1472,6 @@ class ReportView:
 
     def __init__(self, folder: str, height: int = 720) -> None:
         import base64
-        import os
         import re
         self.folder = folder
         self.height = int(height)
@@ -1490,11 +1498,11 @@ class ReportView:
             return f"src='data:{kind};base64,{data}'"
         self.html = re.sub(r"src='([A-Za-z0-9_.-]+\.(?:svg|png))'", image, page)
 
-    def save(self, path: str) -> str:
-        """Writes the self-contained page to `path` (one file, opens offline); returns path."""
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(self.html)
-        return path
+    def save(self, path: "os.PathLike[str] | str") -> str:
+        """Writes the self-contained page to `path` (one file, opens offline); returns path. As
+        the command line writes --output: through a temporary name beside it and a rename (a
+        failed write leaves an existing file as it was); a folder raises InvalidInput."""
+        return _save(path, self.html)
 
     def _repr_html_(self) -> str:
         # In the notebook's frame, opened at the 3D view (the page's answer is above it).

@@ -15,6 +15,7 @@
 #include "heavytop/body.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/map_file.hpp"
+#include "heavytop/io/output.hpp"
 #include "heavytop/report/animation.hpp"
 #include "heavytop/report/figures.hpp"
 #include "heavytop/report/report.hpp"
@@ -43,8 +44,20 @@ void write_report(const std::string& folder, const Body& body, double spin, doub
   } else if (!held.empty()) {
     throw InvalidInput("slice", "needs map=FILE");
   }
-  py::gil_scoped_release release;
-  report::write_report(folder, body, state, t_end, map, source);
+  // The report names its folder "--output", the command line's option: here it is `folder`. A
+  // file that cannot be written is an OSError, as write_file's.
+  try {
+    const py::gil_scoped_release release;
+    report::write_report(folder, body, state, t_end, map, source);
+  } catch (const InvalidInput& e) {
+    if (e.key() != "--output") throw;
+    throw InvalidInput("folder", e.rule());
+  } catch (const io::Failure& e) {
+    const std::string_view what = e.what(), option = "--output: ";
+    const std::string message = what.starts_with(option) ? "folder: " + std::string(what.substr(option.size())) : std::string(what);
+    PyErr_SetString(PyExc_OSError, message.c_str());
+    throw py::error_already_set();
+  }
 }
 
 // As cli/explore_command.cpp: the built page at `page_file` ("" when there is none) with its
@@ -60,6 +73,24 @@ py::bytes explorer_page(const std::string& page_file, const Body& body, double s
   auto page = io::explorer_page(text.str(), body, state);
   if (!in || !page) throw std::runtime_error("explore: '" + page_file + "' is not the explorer page");
   return py::bytes(*page);
+}
+
+// Writes `content` to `path` as the command line writes --output (io::write_output): a regular
+// file, or a new one, through a unique temporary name beside it and a rename, so that a failed
+// write (a full disk, a file-size limit) leaves the old file as it was and no partial one; a
+// device or pipe written directly, never replaced; a folder refused. `key` names the argument
+// in messages ("path: 'out' is a folder"). A path is a file's name here: "-" is the file "-",
+// not stdout. An InvalidInput for what the path is, OSError for a write that fails.
+void write_file(const std::string& path, const py::bytes& content, const std::string& key) {
+  if (path.empty()) throw InvalidInput(key, "give a file's name, e.g. \"page.html\"");
+  const std::string text = content;
+  try {
+    const py::gil_scoped_release unlocked;  // a pipe may wait for its reader
+    io::write_output(path == "-" ? "./-" : path, text, key);
+  } catch (const io::Failure& e) {
+    PyErr_SetString(PyExc_OSError, e.what());
+    throw py::error_already_set();
+  }
 }
 
 std::vector<double> as_vector(const py::handle& column) {
@@ -134,6 +165,9 @@ void bind_report(py::module_& m) {
         "phi0"_a, "theta_rate0"_a, "phi_rate0"_a, "t_end"_a, "map"_a, "held"_a, "values"_a, "source"_a);
   m.def("explorer_page", &explorer_page, "the page of `heavytop explore` (SPEC section 15)", "page_file"_a, "body"_a,
         "spin"_a, "theta0"_a, "phi0"_a, "theta_rate0"_a, "phi_rate0"_a);
+  m.def("write_file", &write_file,
+        "writes bytes to a file as the command line writes --output: a temporary name beside it and a rename",
+        "path"_a, "content"_a, "key"_a);
   m.def("motion_view_data", &motion_view_data, "window.HEAVYTOP_REPORT for one trajectory's 3D view", "body"_a,
         "spin"_a, "columns"_a);
   m.def("page_script", &page_script, "(the report's page script as bytes, or None and why)");

@@ -15,6 +15,7 @@
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/simulate.hpp"
 #include "heavytop/sweep.hpp"
+#include "heavytop/units.hpp"
 #include "interrupt.hpp"
 
 namespace heavytop::python {
@@ -69,6 +70,12 @@ std::vector<VariedKey> varied_keys(const py::dict& vary) {
     }
     if (!values || values.ndim() != 1 || values.size() < 1 || values.size() > 100'000'000)
       throw InvalidInput("vary", fmt::format("the values of '{}' must be a 1-D array of 1 to 100000000 numbers", key));
+    if (key == "spin_rpm") {  // as the command line's spin_rpm=START:STOP:COUNT: the axis "spin", in rad/s
+      Values spins(values.size());
+      for (py::ssize_t i = 0; i < values.size(); ++i) spins.mutable_data()[i] = rad_per_s_from_rpm(values.data()[i]);
+      keys.push_back({"spin", std::move(spins)});
+      continue;
+    }
     keys.push_back({key, std::move(values)});
   }
   return keys;
@@ -140,18 +147,28 @@ py::dict sweep(const Body& body, const py::dict& vary, double spin, double theta
   std::vector<SweepAxis> axes(keys.size());
   bool cli_grid = true;
   for (std::size_t k = 0; k < keys.size(); ++k) cli_grid = is_cli_grid(keys[k], axes[k]) && cli_grid;
-  std::size_t total = 1;
-  for (const auto& k : keys) total *= k.size();
-  if (total > 100'000'000) throw InvalidInput("vary", "the grid must have at most 100000000 points");
-  // Every point is checked before anything is computed, as the command line does.
+  // Every point is checked before anything is computed, as the command line does. The grid's
+  // size first, by the command line's own check (validate_sweep: at most kMaxSweepPoints,
+  // counted in floating point, so that no product of the counts wraps around): for any values,
+  // with axes of their counts at their first values (its corners then are grid point 0, which
+  // the check of every point below starts with anyway).
   without_gil([&] {
     if (cli_grid) {
       validate_sweep(body, state, axes, options);
     } else {
-      validate_sweep(body, state, {}, options);
-      for (std::size_t i = 0; i < total; ++i) validate_sweep(body, state, point_axes(keys, i), options);
+      std::vector<SweepAxis> counts;
+      for (const auto& k : keys) counts.push_back(SweepAxis{k.key, k.data()[0], k.data()[0], k.size()});
+      validate_sweep(body, state, counts, options);
+      const std::size_t total = grid_size(counts);
+      // A few microseconds a point: minutes for the largest grids, so Ctrl-C is heard here too.
+      const auto poll = poll_signals();
+      for (std::size_t i = 0; i < total; ++i) {
+        validate_sweep(body, state, point_axes(keys, i), options);
+        poll(0.0);
+      }
     }
   });
+  const std::size_t total = grid_size(axes);  // at most kMaxSweepPoints, checked above
 
   StabilityMap map{.axes = {}, .nonlinear = nonlinear, .verdicts = std::vector<SweepVerdict>(total)};
   for (const auto& k : keys) map.axes.push_back(MapAxis{.key = k.key, .values = {k.data(), k.data() + k.size()}});

@@ -1,9 +1,12 @@
 """Long computations run with the GIL released and still stop on Ctrl-C (a Jupyter interrupt)."""
 import os
 import signal
+import subprocess
+import sys
 import threading
 import time
 
+import numpy as np
 import pytest
 
 import heavytop
@@ -44,3 +47,72 @@ def test_ctrl_c_stops_a_long_computation(name, call):
     assert stopped - sent[0] < 1.0, name
     # The module works on afterwards.
     assert heavytop.stability(TOP, 200.0)["models"]["linearized"]["stable"] is True
+
+
+# ---- in a child process (issue 46) --------------------------------------------------------------
+# Calls that ran on for half a minute or more after Ctrl-C: each runs in a child process, which is
+# sent SIGINT 0.5 s after the call starts and must end with KeyboardInterrupt within BOUND (a
+# child that goes on is killed, so a call that never hears it fails the test instead of hanging it).
+
+DAMPED = heavytop.Body(TOP.A, TOP.B, TOP.C, TOP.mass, TOP.length, TOP.gravity, axial_damping=1e-12)
+BOUND = 2.0  # s: the docs promise about 0.1 s; slack for a loaded machine and the child's exit
+
+# Needs the core to take a progress callback (heavytop::Progress) where these run: analyse_top()
+# for stability (its damped answer's lifetime(), its tilt_extremes() and axis_wander()), and
+# report::write_report() for report (its analyse_top, compare_models, lifetime and plot_lifetime
+# runs). Neither has one yet; the Python adapter cannot reach the runs inside them.
+NEEDS_CORE_PROGRESS = pytest.mark.xfail(
+    strict=True, reason="analyse_top() and report::write_report() take no progress callback (core change, issue 46)")
+
+LONG = {
+    # Its lifetime runs 1e8 steps, about 40 s: the decay to the critical spin takes 4e4 s.
+    "stability-damped": lambda: heavytop.stability(DAMPED, 200.0, theta0=0.05),
+    # The same run through lifetime(), which polls: the harness's check that a call can pass.
+    "lifetime-damped": lambda: heavytop.lifetime(DAMPED, spin=200.0, theta0=0.05),
+    # About 30 s: compare_models over 3e4 s, the figures, the explorer page.
+    "report": lambda: heavytop.report(TOP, "report", spin=200.0, theta0=0.05, t_end=3e4),
+    # 3e6 points of any values (not the command line's grid): each is checked before any is
+    # computed, a few microseconds a point, which ran on for 16 s after Ctrl-C.
+    "sweep-any-values": lambda: heavytop.sweep(TOP, {"spin": np.linspace(100.0, 300.0, 3000),
+                                                     "C/A": np.linspace(0.2, 0.3, 1000)}),
+}
+
+CHILD = """
+import os, sys, time
+sys.path[:0] = [sys.argv[1]]
+import test_interrupt as t
+call = t.LONG[sys.argv[2]]
+os.chdir(sys.argv[3])  # where a call writes
+print("started", flush=True)
+start = time.perf_counter()
+try:
+    call()
+    print("finished in", time.perf_counter() - start, "s", flush=True)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt after", time.perf_counter() - start, "s", flush=True)
+"""
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param("stability-damped", marks=NEEDS_CORE_PROGRESS),
+    "lifetime-damped",
+    pytest.param("report", marks=NEEDS_CORE_PROGRESS),
+    "sweep-any-values",
+])
+def test_ctrl_c_stops_a_long_call_in_a_child_process(name, tmp_path):
+    child = subprocess.Popen([sys.executable, "-c", CHILD, os.path.dirname(__file__), name, str(tmp_path)],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline() == "started\n", child.stderr.read()
+        time.sleep(0.5)
+        child.send_signal(signal.SIGINT)
+        sent = time.perf_counter()
+        out, err = child.communicate(timeout=BOUND + 3.0)
+        ended = time.perf_counter() - sent
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.communicate()
+        pytest.fail(f"{name}: still running {BOUND + 3.0} s after SIGINT")
+    assert out.startswith("KeyboardInterrupt after"), (out, err)
+    print(f"\n{name}: ended {ended:.3f} s after SIGINT")
+    assert ended < BOUND, name
