@@ -140,8 +140,9 @@ inline constexpr std::size_t kWanderMaxSteps = 2'000'000;
 /// form for A = B (lagrange_top's u_min) and for the upright state without transverse rates
 /// (the permanent rotation: 0); otherwise tilt_extremes over [0, horizon] (s, > 0) with
 /// `options` (max_steps capped at kWanderMaxSteps). Never throws for a valid body and state:
-/// a failure leaves max_tilt empty and says why in `note`.
+/// a failure leaves max_tilt empty and says why in `note`. `progress` is given to that run; what
+/// it throws passes through unless it is a std::exception.
 Wander axis_wander(const Body& body, const InitialState& initial, double horizon,
-                   const Tolerances& options = {});
+                   const Tolerances& options = {}, const Progress& progress = {});
 
 }  // namespace heavytop

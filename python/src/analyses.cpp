@@ -32,22 +32,15 @@ py::tuple stability(const Body& body, double spin, double theta0, double phi0, d
   const InitialState state = motion(spin, theta0, phi0, theta_rate0, phi_rate0);
   const bool on_table = table && table->on_table();
   if (on_table) validate(*table, body);  // as the command line checks [table] with the body, first
-  // As `heavytop stability` checks --horizon and --lifetime-horizon.
-  if (!(std::isfinite(horizon) && horizon > 0.0)) throw InvalidInput("horizon", "must be a finite number > 0");
   AnswerOptions options;
   options.horizon = horizon;
   options.max_tilt = max_tilt;
-  if (lifetime_horizon && !(std::isfinite(*lifetime_horizon) && *lifetime_horizon > 0.0))
-    throw InvalidInput("lifetime_horizon", "must be a finite number > 0");
   options.damped_horizon = lifetime_horizon;
-  if (std::string why; !options.IsValid(&why)) {
-    const auto colon = why.find(": ");
-    throw InvalidInput(why.substr(0, colon), why.substr(colon + 2));
-  }
+  validate(options);  // the command line's checks, under the keys horizon, max_tilt, lifetime_horizon
   if (on_table) return stability_on_table(body, *table, state, options);  // SPEC section 16
   std::string json, words;
   without_gil([&] {
-    const TopAnalysis analysis = analyse_top(body, state, options);
+    const TopAnalysis analysis = analyse_top(body, state, options, poll_signals());
     json = io::stability_json(body, analysis);
     words = io::answer_text(analysis.answer);
     return 0;

@@ -50,6 +50,7 @@ py::tuple load_configuration(const std::string& path) {
       body = io::as_given(a, body);
     }
   }
+  if (table.on_table()) body.touch_tilt = io::touch_tilt(config.parts, body);  // where a body of parts falls
   validate(body);
   validate(config.motion);
   if (table.on_table()) validate(table, body);  // a general or damped body on a table: refused naming its key

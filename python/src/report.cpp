@@ -12,6 +12,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "interrupt.hpp"
 #include "heavytop/body.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/io/map_file.hpp"
@@ -48,7 +49,9 @@ void write_report(const std::string& folder, const Body& body, double spin, doub
   // file that cannot be written is an OSError, as write_file's.
   try {
     const py::gil_scoped_release release;
-    report::write_report(folder, body, state, t_end, map, source);
+    report::write_report(folder, body, state, t_end, map, source, {}, poll_signals());
+  } catch (const Interrupted&) {
+    throw py::error_already_set();  // Ctrl-C: KeyboardInterrupt, the folder as it was
   } catch (const InvalidInput& e) {
     if (e.key() != "--output") throw;
     throw InvalidInput("folder", e.rule());

@@ -57,13 +57,6 @@ def test_ctrl_c_stops_a_long_computation(name, call):
 DAMPED = heavytop.Body(TOP.A, TOP.B, TOP.C, TOP.mass, TOP.length, TOP.gravity, axial_damping=1e-12)
 BOUND = 2.0  # s: the docs promise about 0.1 s; slack for a loaded machine and the child's exit
 
-# Needs the core to take a progress callback (heavytop::Progress) where these run: analyse_top()
-# for stability (its damped answer's lifetime(), its tilt_extremes() and axis_wander()), and
-# report::write_report() for report (its analyse_top, compare_models, lifetime and plot_lifetime
-# runs). Neither has one yet; the Python adapter cannot reach the runs inside them.
-NEEDS_CORE_PROGRESS = pytest.mark.xfail(
-    strict=True, reason="analyse_top() and report::write_report() take no progress callback (core change, issue 46)")
-
 LONG = {
     # Its lifetime runs 1e8 steps, about 40 s: the decay to the critical spin takes 4e4 s.
     "stability-damped": lambda: heavytop.stability(DAMPED, 200.0, theta0=0.05),
@@ -94,9 +87,9 @@ except KeyboardInterrupt:
 
 
 @pytest.mark.parametrize("name", [
-    pytest.param("stability-damped", marks=NEEDS_CORE_PROGRESS),
+    "stability-damped",
     "lifetime-damped",
-    pytest.param("report", marks=NEEDS_CORE_PROGRESS),
+    "report",
     "sweep-any-values",
 ])
 def test_ctrl_c_stops_a_long_call_in_a_child_process(name, tmp_path):

@@ -299,7 +299,8 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& c) {
   return figures;
 }
 
-Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state, DiagramGrid* grid) {
+Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state, DiagramGrid* grid,
+                              const Progress& progress) {
   const Scratch scratch(dir);
   // B/A over every value a real body allows with A and C held, |C - A| <= B <= C + A.
   const auto [lo, hi] = realizable_ratio_range(body);
@@ -339,7 +340,13 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
   options.nonlinear = top * options.horizon <= kPhaseBudget;
   options.integrator.rtol = options.integrator.atol = 1e-8;
   std::ofstream up(scratch.path("up.dat")), falls(scratch.path("falls.dat"));
-  const auto verdicts = sweep_verdicts(body, start, axes, options, 0, grid_size(axes));
+  // In blocks, so that `progress` is called between them (sweep_verdicts takes none).
+  std::vector<SweepVerdict> verdicts;
+  for (std::size_t begin = 0, total = grid_size(axes); begin < total; begin += 256) {
+    if (progress) progress(0.0);
+    const auto block = sweep_verdicts(body, start, axes, options, begin, std::min(total, begin + 256));
+    verdicts.insert(verdicts.end(), block.begin(), block.end());
+  }
   for (std::size_t i = 0; i < verdicts.size() && options.nonlinear; ++i) {
     const auto point = grid_values(axes, i);
     (*verdicts[i].nonlinear ? up : falls) << fmt::format("{} {}\n", point[0], point[1]);
@@ -386,7 +393,8 @@ Figure plot_stability_diagram(const std::string& dir, const Body& body, const In
                 plot, scratch, 1500, 950);
 }
 
-Figure plot_wander(const std::string& dir, const Body& body, std::optional<double> critical_spin) {
+Figure plot_wander(const std::string& dir, const Body& body, std::optional<double> critical_spin,
+                   const Progress& progress) {
   const Scratch scratch(dir);
   const bool exact = is_symmetric(body);
   const double critical = critical_spin.value_or(0.0);
@@ -401,7 +409,7 @@ Figure plot_wander(const std::string& dir, const Body& body, std::optional<doubl
     std::ofstream out(scratch.path(file));
     for (int i = 1; i <= n; ++i) {
       const InitialState start{.spin = top * i / n, .theta0 = delta};
-      const Wander w = axis_wander(body, start, horizon, options);
+      const Wander w = axis_wander(body, start, horizon, options, progress);
       if (w.max_tilt && *w.max_tilt > 0.0) out << fmt::format("{} {}\n", start.spin, *w.max_tilt);
     }
     plot_list += fmt::format("{}{} using 1:2 with linespoints pt 7 ps 0.5 lw 2 title {}, "
@@ -481,11 +489,12 @@ Figure plot_sweep_map(const std::string& dir, const StabilityMap& map, const std
   return render(name, caption, plot, scratch, 1500, 950);
 }
 
-Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life) {
+Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life,
+                     const Progress& progress) {
   const Scratch scratch(dir);
   // The run to a little past the fall (or over the horizon), sampled for the eye.
   const double end = life.fall_time ? std::min(life.horizon, 1.05 * *life.fall_time) : life.horizon;
-  const Simulation run = simulate(Model::Nonlinear, body, state, sample_times(end, kDisplaySamples));
+  const Simulation run = simulate(Model::Nonlinear, body, state, sample_times(end, kDisplaySamples), {}, progress);
   const Trajectory& tr = run.trajectory;
   const std::vector<double>* axial = nullptr;
   for (const auto& [name, column] : tr.extra)

@@ -478,7 +478,8 @@ std::string body_words(const Body& body) {
 }  // namespace
 
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
-                  const std::optional<ReportMap>& map, const std::string& source, const std::vector<DrawnPart>& parts) {
+                  const std::optional<ReportMap>& map, const std::string& source, const std::vector<DrawnPart>& parts,
+                  const Progress& progress) {
   // A map's heat maps first: bad slices are refused before the folder is made.
   const auto heat_maps = map ? map->heat_maps() : std::vector<std::pair<std::string, StabilityMap>>{};
   std::error_code ec;
@@ -490,15 +491,15 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   const Staging staging;
 
   // The answer first (SPEC 14), as `stability` gives it; the motion shown covers what it says.
-  const TopAnalysis analysis = analyse_top(body, state);
+  const TopAnalysis analysis = analyse_top(body, state, {}, progress);
   const auto& [analysed_spin, reports, lyapunov, wander, answer] = analysis;
   const double horizon = t_end.value_or(report_horizon(body, state, answer));
-  const Comparison c = compare_models(body, state, sample_times(horizon, 4001));
+  const Comparison c = compare_models(body, state, sample_times(horizon, 4001), {}, progress);
 
   std::vector<Figure> figures = plot_motion(staging.path(), c);
   DiagramGrid diagram;
-  figures.push_back(plot_stability_diagram(staging.path(), body, state, &diagram));
-  figures.push_back(plot_wander(staging.path(), body, reports[2].critical));
+  figures.push_back(plot_stability_diagram(staging.path(), body, state, &diagram, progress));
+  figures.push_back(plot_wander(staging.path(), body, reports[2].critical, progress));
   // The stability map: B/A over the values a real body allows, spin up to well past the truth's threshold.
   const auto [lo, hi] = realizable_ratio_range(body);
   double top = std::max(2.0 * std::abs(state.spin), 1e-9);
@@ -517,8 +518,8 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   std::optional<Lifetime> life;
   std::optional<Figure> life_figure;
   if (!body.damping.conservative()) {
-    life = lifetime(body, state);
-    life_figure = plot_lifetime(staging.path(), body, state, *life);
+    life = lifetime(body, state, {}, progress);
+    life_figure = plot_lifetime(staging.path(), body, state, *life, progress);
     figures.push_back(*life_figure);
   }
 

@@ -176,7 +176,7 @@ TopAnalysis analyse_top(const Body& body, const InitialState& initial, const Ans
   t.spin = initial.spin;
   t.models = analyse_stability(body, initial.spin);
   t.lyapunov = analyse_lyapunov(body, initial.spin);
-  t.wander = axis_wander(body, initial, options.horizon, options.integrator);
+  t.wander = axis_wander(body, initial, options.horizon, options.integrator, progress);
   t.answer = answer_question(body, initial, t.lyapunov, t.wander, options, progress);
   return t;
 }

@@ -375,7 +375,7 @@ LyapunovStability analyse_lyapunov(const Body& body, double spin) {
 }
 
 Wander axis_wander(const Body& body, const InitialState& initial, double horizon,
-                   const Tolerances& options) {
+                   const Tolerances& options, const Progress& progress) {
   Wander w;
   try {
     validate(body);
@@ -395,7 +395,8 @@ Wander axis_wander(const Body& body, const InitialState& initial, double horizon
     if (!(std::isfinite(horizon) && horizon > 0.0)) throw InvalidInput("horizon", "must be a finite number > 0");
     Tolerances capped = options;
     capped.max_steps = std::min(capped.max_steps, kWanderMaxSteps);
-    w.max_tilt = tilt_extremes(Integrator::Dopri5, body, initial, horizon, std::numeric_limits<double>::infinity(), capped)
+    w.max_tilt = tilt_extremes(Integrator::Dopri5, body, initial, horizon, std::numeric_limits<double>::infinity(), capped,
+                               nullptr, progress)
                     .max_tilt;
   } catch (const InvalidInput& e) {
     w.max_tilt.reset();

@@ -11,6 +11,7 @@
 
 #include "heavytop/compare.hpp"
 #include "heavytop/lifetime.hpp"
+#include "heavytop/progress.hpp"
 #include "heavytop/sweep.hpp"
 #include "heavytop/table.hpp"
 
@@ -75,12 +76,13 @@ std::vector<Figure> plot_motion(const std::string& dir, const Comparison& compar
 /// and the body itself marked: erratum E3 at a glance. `grid`, if not null, receives the
 /// nonlinear runs' grid and verdicts (the report's clickable explorer shows them).
 Figure plot_stability_diagram(const std::string& dir, const Body& body, const InitialState& state,
-                              DiagramGrid* grid = nullptr);
+                              DiagramGrid* grid = nullptr, const Progress& progress = {});
 /// How far the axis wanders: the largest tilt against the spin for a start delta = 1e-3 and
 /// 1e-2 rad off vertical (log scale), the exact linearisation's critical spin marked: the
 /// sqrt(2 delta) plateau at the boundary of (9) and the jump below it (erratum E2). Exact
 /// (the Lagrange top's cubic) for A = B, integrated for A != B.
-Figure plot_wander(const std::string& dir, const Body& body, std::optional<double> critical_spin);
+Figure plot_wander(const std::string& dir, const Body& body, std::optional<double> critical_spin,
+                   const Progress& progress = {});
 /// A two-parameter map as a heat map, figure `name` (default "stability-map"): where the
 /// paper's (4) and the exact linearisation agree or not; for a map with the nonlinear
 /// verdict, where the linearisation and the real body do. `where` ends the title (a slice's
@@ -91,7 +93,8 @@ Figure plot_sweep_map(const std::string& dir, const StabilityMap& map, const std
 /// How long a damped top stays up (SPEC section 8): its spin w.k and its tilt against time
 /// from the damped nonlinear run of `life`, the critical spin as a line, the time the spin law
 /// reaches it and the fall marked.
-Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life);
+Figure plot_lifetime(const std::string& dir, const Body& body, const InitialState& state, const Lifetime& life,
+                     const Progress& progress = {});
 
 /// The body on a table (SPEC section 16), two figures from its run `run` (simulate_on_table's
 /// columns) and its answer: "tilt" (the tilt from the upward vertical and the spin w.k against

@@ -12,6 +12,7 @@
 
 #include "heavytop/body.hpp"
 #include "heavytop/mass_properties.hpp"
+#include "heavytop/progress.hpp"
 #include "heavytop/state.hpp"
 #include "heavytop/sweep.hpp"
 #include "heavytop/table.hpp"
@@ -55,10 +56,12 @@ inline constexpr unsigned long long kMaxDrawnMeshBytes = 48ull << 20;
 /// uniform ellipsoid with the body's mass and moments). Throws
 /// InvalidInput (key "map" or "slice", before anything is made: ReportMap::heat_maps()) for a
 /// map it cannot draw, InvalidInput (key "--output") if the folder cannot be made, io::Failure
-/// if a figure cannot be drawn.
+/// if a figure cannot be drawn. `progress` (progress.hpp) is given to every run it makes (the
+/// answer's, the models' comparison, the stability diagram's between blocks of its grid, the
+/// wander's, the lifetime's); what it throws passes through, leaving the folder as it was.
 void write_report(const std::string& dir, const Body& body, const InitialState& state, std::optional<double> t_end,
                   const std::optional<ReportMap>& map = std::nullopt, const std::string& source = "",
-                  const std::vector<DrawnPart>& parts = {});
+                  const std::vector<DrawnPart>& parts = {}, const Progress& progress = {});
 
 /// Writes the report for `body` on `table` (SPEC section 16; not the pivot) started at `state`
 /// into folder `dir`, as write_report() does for a pivot: the answer on the table first (io's
