@@ -4,9 +4,9 @@
 // --driven, the table, the answer's --horizon, --max-tilt and --lifetime-horizon; the built-in
 // toy top without them). The page is built by Emscripten (web/, the CMake target heavytop_web);
 // this command copies it (report::explorer_page(), which every report's explore.html and
-// Python's explore() come from too: window.HEAVYTOP_INITIAL, the body and motion) with, when the
-// configuration holds more than those (a motor, the table, the tip's or rim's radius, the
-// answer's options), the whole configuration as the page's start (window.HEAVYTOP_CONFIG; else
+// Python's explore() come from too: window.HEAVYTOP_INITIAL, the body with its radii, the motion
+// with its motor, the damping) with, when the configuration holds more than those (the table,
+// the answer's options), the whole configuration as the page's start (window.HEAVYTOP_CONFIG; else
 // it stays null and the page is byte for byte Python's explore()).
 #include <memory>
 #include <optional>
@@ -58,11 +58,10 @@ std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
   return text;
 }
 
-// True if the page's start holds more than HEAVYTOP_INITIAL's body, damping and motion.
+// True if the page's start holds more than HEAVYTOP_INITIAL's (io::explorer_page: the body with
+// its radii, the motion with its motor, the damping): a table or answer options of its own.
 bool beyond_initial(const Inputs& inputs, const AnswerOptions& o) {
-  const Body& b = inputs.body();
-  return b.damping.driven || b.tip_radius != 0.0 || b.rim_radius != 0.0 || inputs.table().on_table() ||
-         o.horizon != AnswerOptions{}.horizon || o.max_tilt != AnswerOptions{}.max_tilt ||
+  return inputs.table().on_table() || o.horizon != AnswerOptions{}.horizon || o.max_tilt != AnswerOptions{}.max_tilt ||
          o.damped_horizon.has_value();
 }
 

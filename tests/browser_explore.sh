@@ -27,7 +27,7 @@ missing=$(comm -23 <("$H" stability --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9
                    <("$H" explore --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9_-]+' | sed 's/^ *//; s/^-.,//' | sort -u) | grep -v -x -e --format)
 check "explore takes every option of stability${missing:+ (missing: $missing)}" test -z "$missing"
 "$H" explore --axial-damping 2e-6 --driven true --output page/driven.html
-check "explore --driven true: the page starts with the motor" grep -q '"driven":true' page/driven.html
+check "explore --driven true: the page starts with the motor" grep -q '"driven": true' page/driven.html
 # Only a configuration beyond the body, damping and motion is written whole (HEAVYTOP_CONFIG):
 # else the page is Python's explore()'s, byte for byte (python/tests/test_parity.py).
 check "explore of a body and motion: no HEAVYTOP_CONFIG" grep -qF 'HEAVYTOP_CONFIG = /*HEAVYTOP_CONFIG*/null;' page/other.html
