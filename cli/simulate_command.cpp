@@ -56,15 +56,14 @@ void run_on_table(const Inputs& inputs, const SimulateFlags& o, Model model) {
     throw InvalidInput("table.contact", fmt::format("--model {} is the pivot's (SPEC section 16): on a table (contact = "
                                                     "\"{}\") use --model nonlinear",
                                                     name(model), name(table.contact)));
-  if (o.integrator != "auto" && o.integrator != "dop853")
-    throw InvalidInput("--integrator", fmt::format("on a table (contact = \"{}\") the body is integrated by dop853 "
-                                                   "(or auto, which is it there)",
-                                                   name(table.contact)));
+  if (auto why = integrator_refusal(o.options.integrator, inputs.body(), true, false))
+    throw InvalidInput("--integrator", *why);
   ProgressBar bar("simulate", o.t_end);
   const Progress progress = [&bar](double t) { bar.update(t); };
   const SampleGrid grid{o.t_end, static_cast<std::size_t>(o.samples)};
   io::OutputStream out(inputs.output(), "--output");
-  const TableRun run = simulate_on_table(inputs.body(), table, inputs.state(), grid, o.options.adaptive, progress);
+  const TableRun run =
+      simulate_on_table(inputs.body(), table, inputs.state(), grid, o.options.adaptive, progress, o.options.integrator);
   out.write(inputs.format() == "json" ? io::table_trajectory_json(inputs.body(), table, inputs.state(), run)
                                       : io::trajectory_csv(run.trajectory));
   if (run.summary.end == TableSummary::End::LeftTable)
@@ -103,7 +102,8 @@ Action add_simulate_command(CLI::App& app) {
       cmd->add_option("--integrator", o->integrator,
                       "nonlinear: auto (the fastest for the body and tolerance) | taylor (Taylor series) | dop853 "
                       "(Dormand-Prince 8) | dopri5 (Dormand-Prince 5) | splitting (fixed step, "
-                      "structure-preserving: bounded energy error over long runs)")
+                      "structure-preserving: bounded energy error over long runs) | rosenbrock4 (implicit: a body "
+                      "sliding on a table, stiff at a small slip speed)")
           ->type_name("NAME")  // checked below: dopri5's old name "adaptive" is accepted, not listed
           ->default_str("auto");
   SplittingOptions& splitting = o->options.splitting;

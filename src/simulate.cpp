@@ -104,6 +104,7 @@ std::string_view name(Integrator integrator) {
     case Integrator::Splitting: return "splitting";
     case Integrator::Taylor: return "taylor";
     case Integrator::Dop853: return "dop853";
+    case Integrator::Rosenbrock4: return "rosenbrock4";
     case Integrator::Auto: break;
   }
   return "auto";
@@ -116,14 +117,55 @@ std::optional<Integrator> integrator_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-std::string integrator_names(std::string_view separator, std::string_view last, bool with_splitting) {
+bool supports(Integrator integrator, IntegratorUse use) {
+  for (const IntegratorSupport& row : kIntegratorSupport)
+    if (row.integrator == integrator) {
+      switch (use) {
+        case IntegratorUse::Pivot: return row.pivot;
+        case IntegratorUse::Damped: return row.damped;
+        case IntegratorUse::General: return row.general;
+        case IntegratorUse::Judging: return row.judging;
+        case IntegratorUse::Table: return row.table;
+      }
+    }
+  return false;
+}
+
+std::string integrator_names(std::string_view separator, std::string_view last,
+                             std::initializer_list<IntegratorUse> uses) {
   std::vector<std::string_view> names;
   for (Integrator i : kIntegrators)
-    if (with_splitting || i != Integrator::Splitting) names.push_back(name(i));
+    if (std::all_of(uses.begin(), uses.end(), [i](IntegratorUse use) { return supports(i, use); }))
+      names.push_back(name(i));
   std::string joined;
   for (std::size_t k = 0; k < names.size(); ++k)
     joined += fmt::format("{}{}", k == 0 ? "" : k + 1 == names.size() ? last : separator, names[k]);
   return joined;
+}
+
+std::optional<std::string> integrator_refusal(Integrator integrator, const Body& body, bool on_table, bool judging) {
+  using U = IntegratorUse;
+  const std::string_view who = name(integrator);
+  // The names that would do, for the run as asked.
+  auto instead = [&](std::initializer_list<U> uses) { return integrator_names(", ", " or ", uses); };
+  const U place = on_table ? U::Table : U::Pivot;
+  if (on_table && !supports(integrator, U::Table))
+    return fmt::format("on a table (SPEC section 16) the body is integrated by {}", instead({U::Table}));
+  if (!on_table && !supports(integrator, U::Pivot))
+    return fmt::format("{} integrates a body on a table (SPEC section 16): on a pivot use {}", who, instead({U::Pivot}));
+  if (is_general(body) && !supports(integrator, U::General))
+    return fmt::format("{} integrates the ordinary body only: the general body (SPEC section 11) is integrated by {}",
+                       who, instead({place, U::General}));
+  if (!body.damping.conservative() && !supports(integrator, U::Damped))
+    return fmt::format("{} integrates the conservative body only: with damping, friction or a motor use {}", who,
+                       instead({place, U::Damped}));
+  if (judging && !supports(integrator, U::Judging))
+    return fmt::format("must be {} ({} has no error control to judge a run by)", instead({place, U::Judging}), who);
+  return std::nullopt;
+}
+
+void check_integrator(Integrator integrator, const Body& body, bool on_table, bool judging) {
+  if (auto why = integrator_refusal(integrator, body, on_table, judging)) throw InvalidInput("integrator", *why);
 }
 
 Integrator choose_integrator(const Body& body, const Tolerances& tolerances) {
@@ -151,6 +193,7 @@ Integrator resolve_integrator(Integrator asked, const Body& body, const Toleranc
 TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const InitialState& initial, double horizon,
                            double stop_above, const Tolerances& tolerances, NonlinearSummary* summary,
                            const Progress& progress) {
+  check_integrator(integrator, body, false, true);
   switch (resolve_integrator(integrator, body, tolerances)) {
     case Integrator::Taylor: {
       TaylorSummary taylor;
@@ -160,9 +203,6 @@ TiltExtremes tilt_extremes(Integrator integrator, const Body& body, const Initia
       return e;
     }
     case Integrator::Dop853: return dop853_tilt_extremes(body, initial, horizon, stop_above, tolerances, progress);
-    case Integrator::Splitting:
-      throw InvalidInput("integrator", fmt::format("must be {} (the splitting has no error control to judge a run by)",
-                                                   integrator_names(", ", " or ", false)));
     default: return tilt_extremes(body, initial, horizon, stop_above, tolerances, summary, progress);
   }
 }
@@ -205,10 +245,7 @@ void validate_damping(Model model, const Body& body, const SimulateOptions& opti
   if (d.conservative()) return;
   if (model == Model::LagrangeExact)
     throw InvalidInput("model", "lagrange-exact is the conservative symmetric top: with damping use nonlinear");
-  if (model == Model::Nonlinear && options.integrator == Integrator::Splitting)
-    throw InvalidInput("integrator", "the splitting integrator is for the conservative body (its order is proven "
-                                     "for it only): with damping use dopri5 (or auto)");
-  if (model == Model::Nonlinear && options.integrator == Integrator::Dop853) detail::refuse_damping(body, "dop853");
+  if (model == Model::Nonlinear) check_integrator(options.integrator, body, false, false);
   if (linear_kind(model) && d.transverse > 0.0 && options.method == LinearMethod::Analytic)
     throw InvalidInput("method", "the closed form covers the undamped linear models: with transverse damping "
                                  "use numeric (the matrix exponential)");
@@ -227,12 +264,8 @@ SimulationSummary run(Model model, const Body& body, const InitialState& initial
   const bool general = is_general(body);
   if (general) {  // SPEC section 11: the nonlinear model by dopri5 or the Taylor integrator only
     if (model != Model::Nonlinear) refuse_general(body, fmt::format("the {} model", name(model)).c_str());
-    if (options.integrator != Integrator::Auto && options.integrator != Integrator::Dopri5 &&
-        options.integrator != Integrator::Taylor)
-      throw InvalidInput("integrator", fmt::format("{} integrates the ordinary body only: the general body (SPEC "
-                                                   "section 11) is integrated by taylor or dopri5 (or auto)",
-                                                   name(options.integrator)));
   }
+  if (model == Model::Nonlinear) check_integrator(options.integrator, body, false, false);
   validate_horizon(body, initial, stream.count ? stream.time(stream.count - 1) : 0.0, time_key);
 
   SimulationSummary s;

@@ -69,6 +69,17 @@ check "negative friction" refuse table.friction simulate --contact sliding --tab
 check "friction without sliding" refuse table.friction simulate --contact rolling --table-friction 0.3
 check "linear model on a table" refuse table.contact simulate --contact rolling --model first-order
 check "taylor on a table" refuse --integrator simulate --contact rolling --integrator taylor
+check "rosenbrock4 on a pivot" refuse --integrator simulate --integrator rosenbrock4
+# A small slip speed makes the viscous law stiff: auto takes the implicit Rosenbrock 4 there (at
+# a tolerance where it is the faster), the two methods agree, and the JSON says which ran.
+"$H" simulate --config "$examples/tippe-top.toml" --slip-speed 1e-6 --rtol 1e-9 --atol 1e-9 --t-end 0.2 --samples 3 --format json > stiff-auto.json
+"$H" simulate --config "$examples/tippe-top.toml" --slip-speed 1e-6 --rtol 1e-9 --atol 1e-9 --t-end 0.2 --samples 3 --integrator dop853 --format json > stiff-dop853.json
+check "auto is rosenbrock4 when stiff" grep -q '"integrator":"rosenbrock4"' stiff-auto.json
+check "dop853 when asked" grep -q '"integrator":"dop853"' stiff-dop853.json
+check "the two agree to 1e-7 rad" python3 -c "
+import json, sys
+a, b = (json.load(open(f)) for f in ('stiff-auto.json', 'stiff-dop853.json'))
+sys.exit(0 if max(abs(x - y) for x, y in zip(a['tilt'], b['tilt'])) < 1e-7 else 1)"
 check "lifetime on a table" refuse table.contact lifetime --config "$examples/tippe-top.toml"
 check "damping on a table" refuse damping.axial simulate --contact sliding --axial-damping 1e-6
 check "unknown law" refuse table.friction_law simulate --contact sliding --friction-law dry

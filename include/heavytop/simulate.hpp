@@ -5,6 +5,7 @@
 /// status and a message instead of a half-filled result before a throw).
 
 #include <array>
+#include <initializer_list>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -45,28 +46,63 @@ std::optional<LinearModelKind> linear_kind(Model model);
 /// The Model of a linear model.
 Model model_of(LinearModelKind kind);
 
-/// How the `nonlinear` model is integrated. Dopri5, Taylor and Dop853 take their
-/// tolerances from SimulateOptions::adaptive; docs/integrators.md compares them.
+/// How the `nonlinear` model is integrated. Each takes its tolerances from
+/// SimulateOptions::adaptive; what each can integrate is kIntegratorSupport's;
+/// docs/integrators.md compares them.
 enum class Integrator {
   Dopri5,     ///< "dopri5": Dormand-Prince 5(4) with error control and dense output (nonlinear.hpp)
   Splitting,  ///< "splitting": fixed-step structure-preserving splitting (splitting.hpp)
   Taylor,     ///< "taylor": Taylor series, order and step from the tolerance (taylor.hpp)
   Dop853,     ///< "dop853": Dormand-Prince 8(5,3) with its 7th-order dense output (dop853.hpp)
-  Auto,       ///< "auto": the fastest of the three above for the body and tolerance (choose_integrator)
+  Auto,       ///< "auto": the fastest for the body and tolerance (choose_integrator; on a table, table.hpp)
+  Rosenbrock4,  ///< "rosenbrock4": Boost.Odeint's L-stable Rosenbrock 4, for the stiff table (table.hpp)
   Adaptive = Dopri5,  ///< dopri5's old name (also accepted as "adaptive")
 };
 /// Every integrator, in the order the command line lists them: auto, taylor, dop853, dopri5,
-/// splitting (the one table behind name(), integrator_from_name() and integrator_names()).
-inline constexpr std::array<Integrator, 5> kIntegrators = {Integrator::Auto, Integrator::Taylor, Integrator::Dop853,
-                                                           Integrator::Dopri5, Integrator::Splitting};
-/// "dopri5" | "splitting" | "taylor" | "dop853" | "auto".
+/// splitting, rosenbrock4 (the one list behind name(), integrator_from_name() and integrator_names()).
+inline constexpr std::array<Integrator, 6> kIntegrators = {Integrator::Auto,   Integrator::Taylor,
+                                                           Integrator::Dop853, Integrator::Dopri5,
+                                                           Integrator::Splitting, Integrator::Rosenbrock4};
+/// "dopri5" | "splitting" | "taylor" | "dop853" | "auto" | "rosenbrock4".
 std::string_view name(Integrator integrator);
 /// The integrator called `name` ("adaptive" is dopri5's old name), or nullopt.
 std::optional<Integrator> integrator_from_name(std::string_view name);
-/// The names of kIntegrators in its order, joined by `separator` and the last two by `last`
-/// (e.g. "auto, taylor, dop853, dopri5 or splitting"); without the splitting when
-/// `with_splitting` is false (the analyses that judge a run by its error control).
-std::string integrator_names(std::string_view separator, std::string_view last, bool with_splitting = true);
+
+/// What a run asks of its integrator: one column of kIntegratorSupport each.
+enum class IntegratorUse {
+  Pivot,    ///< the body on a pivot (SPEC sections 2-15)
+  Damped,   ///< with SPEC section 6's torques (damping, friction, a motor)
+  General,  ///< SPEC section 11's general body
+  Judging,  ///< a run that decides a verdict by its error control (the answer's, a sweep's, tilt extremes)
+  Table,    ///< the body on a table (SPEC section 16)
+};
+/// What one integrator can integrate.
+struct IntegratorSupport {
+  Integrator integrator;
+  bool pivot, damped, general, judging, table;  ///< IntegratorUse's columns, in its order
+};
+/// The one table every refusal of an integrator reads (integrator_refusal(), integrator_names()).
+inline constexpr IntegratorSupport kIntegratorSupport[] = {
+    //                        pivot  damped general judging table
+    {Integrator::Auto,        true,  true,  true,   true,   true},
+    {Integrator::Taylor,      true,  true,  true,   true,   false},
+    {Integrator::Dop853,      true,  false, false,  true,   true},
+    {Integrator::Dopri5,      true,  true,  true,   true,   false},
+    {Integrator::Splitting,   true,  false, false,  false,  false},  // fixed step: conservative, ordinary
+    {Integrator::Rosenbrock4, false, false, false,  true,   true},
+};
+/// True if kIntegratorSupport says `integrator` can do `use`.
+bool supports(Integrator integrator, IntegratorUse use);
+/// The names of kIntegrators in its order that can do every use of `uses`, joined by
+/// `separator` and the last two by `last` (e.g. "auto, taylor, dop853, dopri5, splitting or
+/// rosenbrock4" for no uses).
+std::string integrator_names(std::string_view separator, std::string_view last,
+                             std::initializer_list<IntegratorUse> uses = {});
+/// The rule (for InvalidInput's key "integrator") that `integrator` breaks for a run of `body`
+/// on a table (`on_table`) or a pivot, `judging` a verdict or not; nullopt if it can do it all.
+std::optional<std::string> integrator_refusal(Integrator integrator, const Body& body, bool on_table, bool judging);
+/// Throws InvalidInput("integrator", integrator_refusal(...)) if there is one.
+void check_integrator(Integrator integrator, const Body& body, bool on_table, bool judging);
 /// Auto picks the Taylor integrator when min(rtol, atol) is at most this (dimensionless), or
 /// when A != B, or for a general body; dopri5 (Dopri5) for a symmetric body above it
 /// (docs/integrators.md, "Choosing").

@@ -18,6 +18,7 @@
 #include "heavytop/body.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/progress.hpp"
+#include "heavytop/simulate.hpp"
 #include "heavytop/state.hpp"
 
 namespace heavytop {
@@ -78,6 +79,7 @@ struct TableSummary {
   std::size_t steps = 0;        ///< accepted steps
   std::size_t rhs_evaluations = 0;
   std::size_t switches = 0;     ///< Coulomb's law: the contact's switches between sticking and slipping
+  Integrator integrator = Integrator::Dop853;  ///< the one that ran: Dop853, or Rosenbrock4 (stiff)
   /// The largest |Q(t) - Q(0)| over the accepted steps, relative to the scales of docs/table.md:
   /// the energy (over T(0) + m g |l| + m g r) and Jellett's integral and the vertical angular
   /// momentum about G (over |L_G(0)| (|l| + r + rim) and |L_G(0)|; 0 where they are zero).
@@ -101,16 +103,33 @@ struct TableRun {
 
 /// The motion of `body` on `table` (not the pivot) from `initial` (SPEC section 2's attitude and
 /// angular velocity; P at the table's origin; O without horizontal velocity, or rolling), sampled
-/// at `grid`, integrated by DOP853 (stepper of dop853.hpp) at `tolerances` (which apply to the
+/// at `grid`, integrated by `integrator` (kIntegratorSupport's table column: Dop853, the stepper
+/// of dop853.hpp; Rosenbrock4, Boost.Odeint's L-stable Rosenbrock 4 with an exact Jacobian, for
+/// stiff viscous sliding; Auto: table_integrator()) at `tolerances` (which apply to the
 /// quaternion, the angular velocity in rad/s and G's horizontal position and velocity in m and
 /// m/s). Ends early, with a last sample at the event, when the normal force reaches 0 (located
 /// to 1e-12 s on the dense output). Under Coulomb's law the contact's switches between slipping
-/// and sticking are located the same way and each restarts the stepper (TableSummary::switches). Throws InvalidInput for bad input (validate(table, body), the
-/// state, the tolerances, N < 0 at t = 0 is not an error: it ends the run at t = 0) and
-/// std::runtime_error (one line, with the time) for a numerical failure or Painleve's paradox
-/// (the normal force undetermined).
+/// and sticking are located the same way and each restarts the stepper (TableSummary::switches).
+/// Throws InvalidInput for bad input (validate(table, body), the state, the tolerances, key
+/// "integrator" for one that cannot integrate a table; N < 0 at t = 0 is not an error: it ends
+/// the run at t = 0) and std::runtime_error (one line, with the time) for a numerical failure or
+/// Painleve's paradox (the normal force undetermined).
 TableRun simulate_on_table(const Body& body, const Table& table, const InitialState& initial, const SampleGrid& grid,
-                           const Tolerances& tolerances = {}, const Progress& progress = {});
+                           const Tolerances& tolerances = {}, const Progress& progress = {},
+                           Integrator integrator = Integrator::Auto);
+
+/// The integrator Integrator::Auto stands for on a table: Rosenbrock4 where the viscous law's
+/// relaxation rate (mu g / slip_speed times the slip's inertia factor 1 + m |G - P|^2 / I_G, 1/s)
+/// exceeds stiff_table_ratio(tolerance) times the motion's own fastest rate (the spin, the
+/// tilt's rates, sqrt(m g |G - P| / I_G)), else Dop853. Measured on the tippe top
+/// (docs/table.md): DOP853's steps are held to about 12 / rate there, Rosenbrock 4's by its
+/// accuracy at order 4, each of its steps costing about 4 of DOP853's.
+Integrator table_integrator(const Body& body, const Table& table, const InitialState& initial,
+                            const Tolerances& tolerances);
+/// The stiffness ratio (dimensionless) above which Rosenbrock4 is the faster at `tolerance`
+/// (min(rtol, atol)): 5e3 at 1e-8, growing as tolerance^-0.4 (about 1.8e5 at 1e-12), where the two
+/// took the same time on the tippe top (docs/table.md).
+double stiff_table_ratio(double tolerance);
 
 /// A body's central moments about its transverse axes through G (kg m^2): A - m l^2, B - m l^2.
 double central_moment_A(const Body& body) noexcept;

@@ -182,6 +182,7 @@ std::string table_trajectory_json(const Body& body, const Table& table, const In
                     {"steps", m.steps},
                     {"rhs_evaluations", m.rhs_evaluations},
                     {"switches", m.switches},
+                    {"integrator", name(m.integrator)},
                     {"max_relative_energy_drift", m.max_relative_energy_drift},
                     {"max_relative_jellett_drift", m.max_relative_jellett_drift},
                     {"max_relative_vertical_momentum_drift", m.max_relative_vertical_momentum_drift}};

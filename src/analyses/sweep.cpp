@@ -177,9 +177,10 @@ bool SweepOptions::IsValid(std::string* why) const {
   };
   if (!(std::isfinite(horizon) && horizon > 0.0)) return fail("horizon: must be finite and > 0");
   if (!(std::isfinite(max_tilt) && max_tilt > 0.0 && max_tilt <= M_PI)) return fail("max_tilt: must be in (0, pi] rad");
-  if (nonlinear_integrator == Integrator::Splitting) {
-    if (why) *why = fmt::format("integrator: must be {} (the splitting has no error control to judge a point by)",
-                                integrator_names(", ", " or ", false));
+  if (!supports(nonlinear_integrator, IntegratorUse::Pivot) || !supports(nonlinear_integrator, IntegratorUse::Judging)) {
+    if (why)
+      *why = fmt::format("integrator: must be {} (a sweep's points are on a pivot, each judged by its run's error "
+                         "control)", integrator_names(", ", " or ", {IntegratorUse::Pivot, IntegratorUse::Judging}));
     return false;
   }
   return integrator.IsValid(why);
@@ -227,9 +228,9 @@ void validate_sweep(const Body& base, const InitialState& base_state,
       throw InvalidInput("motion.theta0", "a nonlinear sweep needs a tilted start (e.g. theta0 = 1e-3): the upright body never moves");
     if (start_tilt >= options.max_tilt)
       throw InvalidInput("max_tilt", "must exceed the initial tilt");
-    // DOP853 holds no torques of SPEC section 6 (the grid varies none of them); a damped
+    // What the integrator cannot hold (the grid varies no damping: the base body's say); a damped
     // body goes to the Taylor integrator one point at a time (batchable() is false for it).
-    if (options.nonlinear_integrator == Integrator::Dop853) detail::refuse_damping(base, "dop853");
+    check_integrator(options.nonlinear_integrator, base, false, true);
   }
 }
 

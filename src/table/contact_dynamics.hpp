@@ -60,6 +60,24 @@ struct TableParameters {
 inline double sqrt_of(double x) { return std::sqrt(x); }
 inline std::complex<double> sqrt_of(const std::complex<double>& x) { return std::sqrt(x); }
 
+// a . b and a x b without the conjugation Eigen applies to complex scalars (its dot conjugates
+// `a`, its cross the result): the complex step needs their analytic continuation. Eigen's own
+// for double.
+template <class T>
+T dot(const Vec3<T>& a, const Vec3<T>& b) {
+  if constexpr (std::is_same_v<T, double>)
+    return a.dot(b);
+  else
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+template <class T>
+Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
+  if constexpr (std::is_same_v<T, double>)
+    return a.cross(b);
+  else
+    return Vec3<T>(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+}
+
 template <class T>
 Vec3<T> inertia_times(const TableParameters& p, const Vec3<T>& w) {
   return Vec3<T>(p.Ag * w[0], p.Bg * w[1], p.C * w[2]);
@@ -117,18 +135,21 @@ struct ContactMotion {
 // The velocity of the material point at P (body axes), given G's velocity v.
 template <class T>
 Vec3<T> contact_point_velocity(const ContactGeometry<T>& g, const Vec3<T>& omega, const Vec3<T>& v) {
-  return v - omega.cross(g.s);
+  return v - cross(omega, g.s);
 }
 
 // The friction force per unit normal force (body axes), for the frictionless and viscous laws.
 template <class T>
 Vec3<T> friction_per_normal(const TableParameters& p, const Vec3<T>& gamma, const Vec3<T>& slip) {
   if (p.contact != Contact::Sliding || p.friction == 0.0) return Vec3<T>::Zero();
-  const Vec3<T> tangential = slip - slip.dot(gamma) * gamma;
+  const Vec3<T> tangential = slip - dot(slip, gamma) * gamma;
   if (p.law == FrictionLaw::Coulomb) {  // slipping (the sticking contact's equations are rolling's)
     if constexpr (std::is_same_v<T, double>) {
       const double size = tangential.norm();
       return size > 0.0 ? Vec3<T>((-p.friction / size) * tangential) : Vec3<T>::Zero();
+    } else {  // |t| continued analytically (no conjugate), for the complex step
+      const T size = sqrt_of(dot(tangential, tangential));
+      return std::real(size) > 0.0 ? Vec3<T>((-p.friction / size) * tangential) : Vec3<T>::Zero();
     }
   }
   return (-p.friction / p.slip_speed) * tangential;
@@ -144,13 +165,13 @@ ContactMotion<T> sliding_motion(const TableParameters& p, const Vec3<T>& gamma, 
   m.slip = contact_point_velocity(g, omega, v);
   const Vec3<T> phi = friction_per_normal(p, gamma, m.slip);
   const Vec3<T> arm = -g.s;  // P - G
-  const Vec3<T> wdot0 = inertia_solve(p, Vec3<T>(-omega.cross(inertia_times(p, omega))));
-  const Vec3<T> wdot1 = inertia_solve(p, Vec3<T>(arm.cross(gamma + phi)));
-  const Vec3<T> gamma_dot = gamma.cross(omega);
+  const Vec3<T> wdot0 = inertia_solve(p, Vec3<T>(-cross(omega, inertia_times(p, omega))));
+  const Vec3<T> wdot1 = inertia_solve(p, cross(arm, Vec3<T>(gamma + phi)));
+  const Vec3<T> gamma_dot = cross(gamma, omega);
   const T c_dot = gamma_dot[2];
   // c'' = (gamma' x omega)_3 + (gamma x omega')_3, omega' = wdot0 + N wdot1.
-  const T c_ddot0 = gamma_dot.cross(omega)[2] + gamma.cross(wdot0)[2];
-  const T c_ddot1 = gamma.cross(wdot1)[2];
+  const T c_ddot0 = cross(gamma_dot, omega)[2] + cross(gamma, wdot0)[2];
+  const T c_ddot1 = cross(gamma, wdot1)[2];
   m.denominator = 1.0 / p.mass - g.f1 * c_ddot1;
   m.normal = (p.gravity + g.f2 * c_dot * c_dot + g.f1 * c_ddot0) / m.denominator;
   m.omega_dot = wdot0 + m.normal * wdot1;
@@ -164,7 +185,7 @@ template <class T>
 ContactMotion<T> rolling_motion(const TableParameters& p, const Vec3<T>& gamma, const Vec3<T>& omega) {
   const ContactGeometry<T> g = contact_geometry(p, gamma);
   const Vec3<T> e3(T(0.0), T(0.0), T(1.0));
-  const Vec3<T> gamma_dot = gamma.cross(omega);
+  const Vec3<T> gamma_dot = cross(gamma, omega);
   // ds/dt in body axes: r gamma' - rho u', u' = (c' e3 - gamma') / S + (c e3 - gamma) c c' / S^3.
   Vec3<T> s_dot = p.tip_radius * gamma_dot;
   if (p.rim_radius > 0.0) {
@@ -174,18 +195,18 @@ ContactMotion<T> rolling_motion(const TableParameters& p, const Vec3<T>& gamma, 
   }
   const Vec3<T>& s = g.s;
   // (I_G + m (|s|^2 1 - s s^T)) omega' = -omega x I_G omega - m s x (omega x (omega x s) + omega x s' + g gamma)
-  const Vec3<T> drift = omega.cross(Vec3<T>(omega.cross(s))) + omega.cross(s_dot);
-  const Vec3<T> rhs = -omega.cross(inertia_times(p, omega)) - p.mass * s.cross(Vec3<T>(drift + p.gravity * gamma));
+  const Vec3<T> drift = cross(omega, cross(omega, s)) + cross(omega, s_dot);
+  const Vec3<T> rhs = -cross(omega, inertia_times(p, omega)) - p.mass * cross(s, Vec3<T>(drift + p.gravity * gamma));
   Eigen::Matrix<T, 3, 3> K = -p.mass * s * s.transpose();
-  const T s2 = s.squaredNorm();
+  const T s2 = dot(s, s);
   K(0, 0) += p.Ag + p.mass * s2;
   K(1, 1) += p.Bg + p.mass * s2;
   K(2, 2) += p.C + p.mass * s2;
   ContactMotion<T> m;
   m.omega_dot = K.inverse() * rhs;  // 3x3: the cofactor formula
-  m.accel = m.omega_dot.cross(s) + drift;
+  m.accel = cross(m.omega_dot, s) + drift;
   m.force = p.mass * (m.accel + p.gravity * gamma);
-  m.normal = m.force.dot(gamma);
+  m.normal = dot(m.force, gamma);
   m.denominator = T(1.0 / p.mass);
   m.slip = Vec3<T>::Zero();
   return m;

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <complex>
+#include <functional>
 #include <stdexcept>
 
 #include <boost/math/tools/toms748_solve.hpp>
@@ -14,6 +16,7 @@
 #include "heavytop/rigid_body.hpp"
 
 #include "integrators/dop853/stepper.hpp"
+#include "integrators/rosenbrock/stepper.hpp"
 #include "integrators/monitor.hpp"
 #include "table/contact_dynamics.hpp"
 
@@ -88,6 +91,22 @@ void validate(const Table& table, const Body& body) {
                                            name(table.contact)));
 }
 
+double stiff_table_ratio(double tolerance) { return 5e3 * std::pow(1e-8 / tolerance, 0.4); }
+
+Integrator table_integrator(const Body& body, const Table& table, const InitialState& initial,
+                            const Tolerances& tolerances) {
+  if (table.contact != Contact::Sliding || table.friction_law != FrictionLaw::Viscous || table.friction == 0.0)
+    return Integrator::Dop853;
+  const double reach = std::abs(body.length) + body.tip_radius + body.rim_radius;
+  const double inertia = std::min({central_moment_A(body), central_moment_B(body), body.C});
+  const double relaxation =
+      table.friction * body.gravity / table.slip_speed * (1.0 + body.mass * reach * reach / inertia);
+  const double own = std::max({std::abs(initial.spin), std::abs(initial.theta_rate0), std::abs(initial.phi_rate0),
+                               std::sqrt(body.mass * body.gravity * reach / inertia)});
+  const double tolerance = std::min(tolerances.rtol, tolerances.atol);
+  return relaxation > stiff_table_ratio(tolerance) * own ? Integrator::Rosenbrock4 : Integrator::Dop853;
+}
+
 double central_moment_A(const Body& body) noexcept { return body.A - body.mass * body.length * body.length; }
 double central_moment_B(const Body& body) noexcept { return body.B - body.mass * body.length * body.length; }
 
@@ -97,34 +116,53 @@ using detail::ContactMotion;
 using detail::TableParameters;
 using V3 = Eigen::Vector3d;
 constexpr std::size_t kStateSize = 11;  // q (4), omega in body axes (3), G's x, y (2), G's vx, vy (2)
-using TableVector = std::array<double, kStateSize>;
+template <class T>
+using StateOf = std::array<T, kStateSize>;
+using TableVector = StateOf<double>;
+using Complex = std::complex<double>;
 
-// The rotation body-to-fixed of q / |q| (as from_vector(), rigid_body.cpp).
-Eigen::Matrix3d rotation_of(const TableVector& y) {
-  return from_vector({y[0], y[1], y[2], y[3], y[4], y[5], y[6]}).attitude;
+// The rotation body-to-fixed of q / |q|: from_vector()'s formula (rigid_body.cpp), in any scalar
+// (the Jacobian's complex step); q = 0 gives the identity.
+template <class T>
+Eigen::Matrix<T, 3, 3> rotation_of(const StateOf<T>& y) {
+  const T qw = y[0], qx = y[1], qy = y[2], qz = y[3];
+  const T n2 = qw * qw + qx * qx + qy * qy + qz * qz;
+  const T s = std::real(n2) > 0.0 ? T(2.0) / n2 : T(0.0);
+  const T tx = s * qx, ty = s * qy, tz = s * qz;
+  const T twx = tx * qw, twy = ty * qw, twz = tz * qw;
+  const T txx = tx * qx, txy = ty * qx, txz = tz * qx, tyy = ty * qy, tyz = tz * qy, tzz = tz * qz;
+  Eigen::Matrix<T, 3, 3> R;
+  R << T(1.0) - (tyy + tzz), txy - twz, txz + twy,  //
+      txy + twz, T(1.0) - (txx + tzz), tyz - twx,    //
+      txz - twy, tyz + twx, T(1.0) - (txx + tyy);
+  return R;
 }
 
 // One instant of the motion: what the right-hand side and the samples need.
-struct Instant {
-  Eigen::Matrix3d R;  // body to fixed
-  V3 gamma, omega;    // body axes
-  V3 velocity;        // G's velocity, body axes
-  ContactMotion<double> motion;
-  detail::ContactGeometry<double> geometry;
+template <class T>
+struct InstantOf {
+  Eigen::Matrix<T, 3, 3> R;  // body to fixed
+  detail::Vec3<T> gamma, omega;  // body axes
+  detail::Vec3<T> velocity;      // G's velocity, body axes
+  ContactMotion<T> motion;
+  detail::ContactGeometry<T> geometry;
 };
+using Instant = InstantOf<double>;
 
-Instant instant_of(const TableParameters& p, const TableVector& y) {
-  Instant in;
+template <class T>
+InstantOf<T> instant_of(const TableParameters& p, const StateOf<T>& y) {
+  using Vec = detail::Vec3<T>;
+  InstantOf<T> in;
   in.R = rotation_of(y);
   in.gamma = in.R.row(2).transpose();
-  in.omega = V3(y[4], y[5], y[6]);
+  in.omega = Vec(y[4], y[5], y[6]);
   in.geometry = detail::contact_geometry(p, in.gamma);
   if (p.contact == Contact::Rolling) {
-    in.velocity = in.omega.cross(in.geometry.s);
+    in.velocity = detail::cross(in.omega, in.geometry.s);
     in.motion = detail::rolling_motion(p, in.gamma, in.omega);
   } else {
-    const double z_rate = in.geometry.f1 * in.gamma.cross(in.omega)[2];
-    in.velocity = in.R.transpose() * V3(y[9], y[10], z_rate);
+    const T z_rate = in.geometry.f1 * detail::cross(in.gamma, in.omega)[2];
+    in.velocity = in.R.transpose() * Vec(y[9], y[10], z_rate);
     in.motion = detail::sliding_motion(p, in.gamma, in.omega, in.velocity);
   }
   return in;
@@ -132,19 +170,35 @@ Instant instant_of(const TableParameters& p, const TableVector& y) {
 
 struct TableSystem {
   TableParameters p;
-  void operator()(const TableVector& y, TableVector& dydt, double) const {
-    const Instant in = instant_of(p, y);
-    const double qw = y[0], qx = y[1], qy = y[2], qz = y[3], w1 = y[4], w2 = y[5], w3 = y[6];
+
+  template <class T>
+  void rates(const StateOf<T>& y, StateOf<T>& dydt) const {
+    const InstantOf<T> in = instant_of(p, y);
+    const T qw = y[0], qx = y[1], qy = y[2], qz = y[3], w1 = y[4], w2 = y[5], w3 = y[6];
     dydt[0] = 0.5 * (-qx * w1 - qy * w2 - qz * w3);
     dydt[1] = 0.5 * (qw * w1 + qy * w3 - qz * w2);
     dydt[2] = 0.5 * (qw * w2 + qz * w1 - qx * w3);
     dydt[3] = 0.5 * (qw * w3 + qx * w2 - qy * w1);
     for (int i = 0; i < 3; ++i) dydt[4 + i] = in.motion.omega_dot[i];
-    const V3 v = in.R * in.velocity, a = in.R * in.motion.accel;
+    const detail::Vec3<T> v = in.R * in.velocity, a = in.R * in.motion.accel;
     dydt[7] = v[0];
     dydt[8] = v[1];
     dydt[9] = a[0];
     dydt[10] = a[1];
+  }
+
+  void operator()(const TableVector& y, TableVector& dydt, double) const { rates(y, dydt); }
+
+  // d(rates)/dy by the complex step, column by column: exact to rounding (no difference quotient).
+  void jacobian(const TableVector& y, Eigen::Matrix<double, kStateSize, kStateSize>& J) const {
+    constexpr double h = 1e-30;
+    StateOf<Complex> z, dz;
+    for (std::size_t j = 0; j < kStateSize; ++j) {
+      for (std::size_t i = 0; i < kStateSize; ++i) z[i] = y[i];
+      z[j] += Complex(0.0, h);
+      rates(z, dz);
+      for (std::size_t i = 0; i < kStateSize; ++i) J(i, j) = dz[i].imag() / h;
+    }
   }
 };
 
@@ -191,7 +245,8 @@ struct TableHooks {
   void evaluated(std::size_t evaluations) { summary->rhs_evaluations = evaluations_before + evaluations; }
 };
 
-using Stepper = detail::Dop853Stepper<kStateSize, TableSystem, TableHooks>;
+using Dop853 = detail::Dop853Stepper<kStateSize, TableSystem, TableHooks>;
+using Rosenbrock4 = detail::RosenbrockStepper<kStateSize, TableSystem, TableHooks>;
 
 // Appends the sample of state y at t to the run's trajectory.
 class TableSampler {
@@ -290,12 +345,13 @@ double sign_change(StateAt&& state_at, double a, double b, G&& g) {
 class TableIntegration {
  public:
   TableIntegration(const Body& body, const Table& table, const InitialState& initial, double horizon,
-                   const Tolerances& tolerances)
+                   const Tolerances& tolerances, Integrator integrator)
       : p_(TableParameters::of(body, table)), horizon_(horizon), tolerances_(tolerances) {
     validate(table, body);
     if (!table.on_table()) throw InvalidInput("table.contact", "needs a table, not \"pivot\"");
     validate(initial);
     validate(tolerances);
+    check_integrator(integrator, body, true, false);
     if (!(std::isfinite(horizon) && horizon >= 0.0)) throw InvalidInput("t_end", "must be a finite number >= 0");
     stick_ = p_;
     stick_.contact = Contact::Rolling;
@@ -328,17 +384,23 @@ class TableIntegration {
     const Instant first = instant_of(parameters(), y0_);
     if (!(first.motion.denominator > 0.0)) painleve(0.0);
     normal0_ = first.motion.normal;
+    integrator_ = integrator == Integrator::Auto ? table_integrator(body, table, initial, tolerances) : integrator;
   }
+
+  Integrator integrator() const { return integrator_; }
 
   // The equations of the moment: the contact's, or rolling while Coulomb's contact sticks.
   const TableParameters& parameters() const { return stuck_ ? stick_ : p_; }
   const TableVector& initial_state() const { return y0_; }
 
+  // One accepted step, whichever stepper took it.
   struct StepView {
-    Stepper& stepper;
+    const std::function<void(double, TableVector&)>& dense;  // the segment's dense output, its own time
     const TableParameters& params;
-    double offset, t0, t1;  // s: the segment's start, the step's ends
-    void state_at(double t, TableVector& y) const { stepper.interpolate(t - offset, y); }
+    double offset, t0, t1;        // s: the segment's start, the step's ends
+    const TableVector& start;     // the state at t0
+    const TableVector& end;       // the state at the step's end (before an event cut it short)
+    void state_at(double t, TableVector& y) const { dense(t - offset, y); }
   };
 
   template <class OnStep>
@@ -353,59 +415,70 @@ class TableIntegration {
     int stalled = 0;
     TableVector y_start = y0_;
     for (;;) {
-      const TableParameters q = parameters();
-      Stepper stepper(TableSystem{q}, y_start, horizon_ - offset, tolerances_,
-                      TableHooks{q, &summary, initial_, scales_, summary.rhs_evaluations});
-      bool switched = false;
-      while (offset + stepper.time() < horizon_ && !switched) {
-        stepper.step();
-        StepView view{stepper, q, offset, offset + stepper.previous_time(), offset + stepper.time()};
-        const Instant end = instant_of(q, stepper.state());
-        if (!(end.motion.denominator > 0.0)) painleve(view.t1);
-        // The events of this step, the earliest first: leaving the table, Coulomb's switch.
-        std::optional<double> leave, change;
-        if (end.motion.normal < 0.0)
-          leave = locate(view, [&](const TableVector& y) { return instant_of(q, y).motion.normal; });
-        if (coulomb()) change = switch_in(view);
-        if (leave && (!change || *leave <= *change)) {
-          summary.end = TableSummary::End::LeftTable;
-          summary.end_time = *leave;
-          view.t1 = *leave;
-          on_step(view);
-          return;
-        }
-        if (change) {
-          view.t1 = *change;
-          summary.end_time = *change;
-          if (!on_step(view)) return;
-          stepper.interpolate(*change - offset, y_start);
-          // Stick if the force that takes is within the cone, else slip on from the switch.
-          if (!stuck_ && sticks(y_start)) {
-            stuck_ = true;
-            set_rolling_velocity(y_start);
-          } else {
-            stuck_ = false;
-            start_slip(y_start);
-            armed_ = false;
-          }
-          ++summary.switches;
-          // Switches that no longer advance the time (Zeno's chatter): stop, saying where.
-          stalled = *change > offset ? 0 : stalled + 1;
-          if (stalled > 100)
-            throw std::runtime_error(fmt::format("table: the contact switches between sticking and slipping without "
-                                                 "end at t = {:.9g} s (Coulomb's law at a point)", *change));
-          offset = *change;
-          switched = true;
-          break;
-        }
-        summary.end_time = view.t1;
-        if (!on_step(view)) return;
-      }
+      const bool switched = integrator_ == Integrator::Rosenbrock4 ? segment<Rosenbrock4>(summary, on_step, offset, stalled, y_start)
+                                   : segment<Dop853>(summary, on_step, offset, stalled, y_start);
       if (!switched) return;
     }
   }
 
  private:
+  // One segment of the run, a fresh stepper from y_start at offset: true if it ended at a
+  // Coulomb switch (offset and y_start then the switch's), false if the run is over.
+  template <class Stepper, class OnStep>
+  bool segment(TableSummary& summary, OnStep& on_step, double& offset, int& stalled, TableVector& y_start) {
+    const TableParameters q = parameters();
+    Stepper stepper(TableSystem{q}, y_start, horizon_ - offset, tolerances_,
+                    TableHooks{q, &summary, initial_, scales_, summary.rhs_evaluations});
+    const std::function<void(double, TableVector&)> dense = [&stepper](double t, TableVector& y) {
+      stepper.interpolate(t, y);
+    };
+    while (offset + stepper.time() < horizon_) {
+      stepper.step();
+      StepView view{dense, q, offset, offset + stepper.previous_time(), offset + stepper.time(),
+                    stepper.previous_state(), stepper.state()};
+      const Instant end = instant_of(q, stepper.state());
+      if (!(end.motion.denominator > 0.0)) painleve(view.t1);
+      // The events of this step, the earliest first: leaving the table, Coulomb's switch.
+      std::optional<double> leave, change;
+      if (end.motion.normal < 0.0)
+        leave = locate(view, [&](const TableVector& y) { return instant_of(q, y).motion.normal; });
+      if (coulomb()) change = switch_in(view);
+      if (leave && (!change || *leave <= *change)) {
+        summary.end = TableSummary::End::LeftTable;
+        summary.end_time = *leave;
+        view.t1 = *leave;
+        on_step(view);
+        return false;
+      }
+      if (change) {
+        view.t1 = *change;
+        summary.end_time = *change;
+        if (!on_step(view)) return false;
+        stepper.interpolate(*change - offset, y_start);
+        // Stick if the force that takes is within the cone, else slip on from the switch.
+        if (!stuck_ && sticks(y_start)) {
+          stuck_ = true;
+          set_rolling_velocity(y_start);
+        } else {
+          stuck_ = false;
+          start_slip(y_start);
+          armed_ = false;
+        }
+        ++summary.switches;
+        // Switches that no longer advance the time (Zeno's chatter): stop, saying where.
+        stalled = *change > offset ? 0 : stalled + 1;
+        if (stalled > 100)
+          throw std::runtime_error(fmt::format("table: the contact switches between sticking and slipping without "
+                                               "end at t = {:.9g} s (Coulomb's law at a point)", *change));
+        offset = *change;
+        return true;
+      }
+      summary.end_time = view.t1;
+      if (!on_step(view)) return false;
+    }
+    return false;
+  }
+
   bool coulomb() const { return p_.contact == Contact::Sliding && p_.law == FrictionLaw::Coulomb; }
 
   static V3 slip_of(const Instant& in) {
@@ -451,30 +524,30 @@ class TableIntegration {
         const auto [F, N] = sticking_force(y);
         return p_.friction * N - F.norm();
       };
-      if (margin(view.stepper.state()) >= 0.0) return std::nullopt;
+      if (margin(view.end) >= 0.0) return std::nullopt;
       return locate(view, margin);
     }
-    const V3 before = slip_of(instant_of(p_, view.stepper.previous_state()));
+    const V3 before = slip_of(instant_of(p_, view.start));
     const double size = before.norm();
     // A slip that starts from a switch grows from onset_slip_ and turns into the direction the
     // body's inertia gives it: its stop is watched once it has grown past 10 stop_slip_.
     if (!armed_) {
-      armed_ = slip_of(instant_of(p_, view.stepper.state())).norm() > 10.0 * stop_slip_;
+      armed_ = slip_of(instant_of(p_, view.end)).norm() > 10.0 * stop_slip_;
       return std::nullopt;
     }
     if (!(size > 0.0)) return std::nullopt;
     // The slip stops where it passes through zero (its component along its direction at the
     // step's start, held, turns negative) or falls below stop_slip_ (a slip that spirals in:
     // its direction turns ever faster and the steps shrink with it).
-    const V3 direction = rotation_of(view.stepper.previous_state()) * before / size;
+    const V3 direction = rotation_of(view.start) * before / size;
     auto along = [&](const TableVector& y) {
       const Instant in = instant_of(p_, y);
       return (in.R * slip_of(in)).dot(direction);
     };
     auto above_stop = [&](const TableVector& y) { return slip_of(instant_of(p_, y)).norm() - stop_slip_; };
     std::optional<double> first;
-    if (along(view.stepper.state()) <= 0.0) first = locate(view, along);
-    if (above_stop(view.stepper.state()) < 0.0) {
+    if (along(view.end) <= 0.0) first = locate(view, along);
+    if (above_stop(view.end) < 0.0) {
       const double t = locate(view, above_stop);
       if (!first || t < *first) first = t;
     }
@@ -495,6 +568,7 @@ class TableIntegration {
   DriftScales scales_;
   double normal0_ = 0.0;
   double onset_slip_ = 0.0, stop_slip_ = 0.0;  // m/s
+  Integrator integrator_ = Integrator::Dop853;  // Dop853 or Rosenbrock4
   bool stuck_ = false;
   bool armed_ = true;  // slipping: the slip's stop is watched (see switch_in)
 };
@@ -502,8 +576,8 @@ class TableIntegration {
 }  // namespace detail
 
 TableRun simulate_on_table(const Body& body, const Table& table, const InitialState& initial, const SampleGrid& grid,
-                           const Tolerances& tolerances, const Progress& progress) {
-  detail::TableIntegration integration(body, table, initial, grid.t_end, tolerances);
+                           const Tolerances& tolerances, const Progress& progress, Integrator integrator) {
+  detail::TableIntegration integration(body, table, initial, grid.t_end, tolerances, integrator);
   TableRun run;
   TableSampler sampler(run.trajectory);
   run.trajectory.reserve(grid.count);
@@ -523,6 +597,7 @@ TableRun simulate_on_table(const Body& body, const Table& table, const InitialSt
     return true;
   });
   if (run.summary.end == TableSummary::End::Completed) run.summary.end_time = run.trajectory.t.back();
+  run.summary.integrator = integration.integrator();
   return run;
 }
 
@@ -612,7 +687,7 @@ TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const I
   a.part_touches = body.touch_tilt.has_value();
   a.horizon = options.horizon;
   a.min_spin = out.stability.upright.critical_spin;
-  detail::TableIntegration integration(body, table, initial, options.horizon, options.integrator);
+  detail::TableIntegration integration(body, table, initial, options.horizon, options.integrator, Integrator::Auto);
   a.start_tilt = a.max_tilt = a.final_tilt = tilt_of(integration.initial_state());
   a.final_spin = initial.spin;
   AnswerWatch watch(integration.parameters(), a, a.start_tilt);

@@ -28,7 +28,7 @@ Eigen::VectorXcd reduced_rates(const TableParameters& p, bool inverted, const Ei
   const CV3 gamma(x[0], x[1], g3), omega(x[2], x[3], x[4]);
   const bool rolls = p.contact == Contact::Rolling;
   Eigen::VectorXcd rates(x.size());
-  const CV3 gamma_dot = gamma.cross(omega);
+  const CV3 gamma_dot = detail::cross(gamma, omega);
   rates[0] = gamma_dot[0];
   rates[1] = gamma_dot[1];
   if (rolls) {
@@ -41,7 +41,7 @@ Eigen::VectorXcd reduced_rates(const TableParameters& p, bool inverted, const Ei
   const CV3 v(x[5], x[6], (z_rate - x[5] * gamma[0] - x[6] * gamma[1]) / gamma[2]);
   const auto m = detail::sliding_motion(p, gamma, omega, v);
   for (int i = 0; i < 3; ++i) rates[2 + i] = m.omega_dot[i];
-  const CV3 v_dot = m.accel - omega.cross(v);  // body-axes rate of a fixed-frame vector
+  const CV3 v_dot = m.accel - detail::cross(omega, v);  // body-axes rate of a fixed-frame vector
   rates[5] = v_dot[0];
   rates[6] = v_dot[1];
   return rates;
