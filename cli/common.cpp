@@ -86,6 +86,13 @@ static std::string& realizability_warning() {
   return warning;
 }
 
+/// io::implausible_size_warning() of the body resolve() made (a unit slip, mm typed as m),
+/// printed as the realizability warning is.
+static std::string& size_warning() {
+  static std::string warning;
+  return warning;
+}
+
 /// Throws InvalidInput naming the first option of `command` given an empty value (CLI11 makes
 /// `--length ""` a 0 and `--config ""` no file at all).
 static void refuse_empty_values(const CLI::App& command) {
@@ -272,6 +279,7 @@ void Inputs::resolve(bool allow_general) {
                                         : std::string("beyond a double"))
                       : std::string("heavytop: warning: this body cannot exist as given: its principal moments of "
                                     "inertia about the centre of mass break the triangle inequality; going on\n"));
+  size_warning() = io::implausible_size_warning(body);  // said with the realizability warning
   body_ = body;
   state_ = state;
   table_ = table;
@@ -332,7 +340,7 @@ ProgressBar::~ProgressBar() {
 int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
   try {
     const int status = body();
-    std::cerr << realizability_warning();
+    std::cerr << realizability_warning() << size_warning();
     return status;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

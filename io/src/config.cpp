@@ -65,7 +65,7 @@ struct PartKey {
 constexpr PartKey kPartKeys[] = {
     {"shape", ""},           {"radius", "cylinder tube cone sphere"}, {"inner_radius", "tube"},
     {"height", "cylinder tube cone"}, {"z0", "cylinder tube cone sphere"}, {"apex", "cone"},
-    {"density", ""},         {"mass", ""},          {"file", "mesh"},  {"units", "mesh"},
+    {"density", ""},         {"mass", ""},          {"file", "mesh"},  {"units", ""},
 };
 
 std::string string_of(const toml::node& node, const std::string& key) {
@@ -124,6 +124,10 @@ PartSpec parse_part(const toml::table& table, std::size_t index, const std::stri
       else if (name == "density") part.solid.density = x;
       else if (name == "mass") part.solid.mass = x;
     }
+  }
+  if (!part.mesh) {  // the lengths in m from here on (density stays kg/m^3: units names the lengths only)
+    for (double* length : {&part.solid.radius, &part.solid.inner_radius, &part.solid.height, &part.solid.z0})
+      *length *= part.scale;
   }
   if (part.mesh) {
     if (part.file.empty()) throw InvalidInput(base + ".file", "is required for shape 'mesh' (STL, OBJ or PLY)");

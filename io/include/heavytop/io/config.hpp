@@ -49,7 +49,8 @@ struct PartSpec {
   bool mesh = false;       ///< shape = "mesh"
   SolidPart solid;         ///< the solid's shape and sizes; density or mass for a mesh too
   std::string file;        ///< mesh: the path, a relative one resolved against the configuration's folder
-  double scale = 1.0;      ///< mesh: m per unit of the file (units "m": 1, "mm": 1e-3)
+  double scale = 1.0;      ///< m per unit of the part's lengths (units "m": 1, "mm": 1e-3): a mesh's
+                           ///< coordinates; a solid's sizes are already in m (parse_configuration())
   /// "body.part[i]" followed by the label in parentheses, as messages name the part.
   std::string name(std::size_t index) const;
 };
