@@ -83,7 +83,10 @@ struct Configuration {
 /// "section.key" for an unknown section or key or a value of the wrong type; nothing else for
 /// any bytes (fuzz/fuzz_config.cpp). Does not check the body's rules (validate() does, once
 /// the command line's values are applied). `motion.spin_rpm` is stored as motion.spin in rad/s
-/// (given as "motion.spin" too); giving both is refused. No mesh file is read here.
+/// (given as "motion.spin" too), `motion.theta0_deg` and `motion.phi0_deg` as motion.theta0 and
+/// motion.phi0 in rad; giving both of a pair is refused. A solid part's `units = "mm"` is
+/// applied here (its radius, inner_radius, height and z0 stored in m); its density stays in
+/// kg/m^3 and its mass in kg. No mesh file is read here.
 Configuration parse_configuration(std::string_view text, const std::string& source, const std::string& path_key);
 
 /// The largest configuration file read_configuration() reads (bytes): more is refused, so a
