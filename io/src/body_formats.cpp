@@ -86,8 +86,8 @@ std::string body_text(const AssembledBody& body, double gravity, const std::opti
     out << (!upright->critical ? std::string("Minimum spin to stand upright: none holds it upright (the linearized "
                                              "model, without damping)\n")
             : *upright->critical == 0.0
-                ? std::string("Minimum spin to stand upright: none needed, upright is stable at any spin (the "
-                              "linearized model)\n")
+                ? fmt::format("Minimum spin to stand upright: none needed, upright is stable at any spin ({})\n",
+                              a.length < 0 ? "the centre of mass hangs below O" : "the linearized model")
                 : fmt::format("Minimum spin to stand upright (the critical spin of the linearized model, without "
                               "damping): {}\n",
                               spin_text(*upright->critical)));
