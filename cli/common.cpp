@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <new>
+#include <tuple>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <chrono>
@@ -78,10 +79,49 @@ CLI::Validator positive_count() {
       "INT >= 1");
 }
 
+namespace {
+
+/// The angles given in degrees in this run, by the field their value went to: a message about
+/// the field names the option typed (--max-tilt-deg) and the degrees, not the rad option.
+struct DegreesGiven {
+  std::string option;
+  double degrees;
+};
+std::map<std::string, DegreesGiven>& degrees_given() {
+  static std::map<std::string, DegreesGiven> given;
+  return given;
+}
+
+}  // namespace
+
+DegreesOption::DegreesOption(CLI::App& command, CLI::Option* rad, std::string field, const std::string& names,
+                             const std::string& help)
+    : rad_(rad), field_(std::move(field)) {
+  option_ = command.add_option(names, degrees_, help)
+                ->type_name("NUM")
+                ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                ->group(rad->get_group());
+}
+
+void DegreesOption::apply(double& target) const {
+  if (!given()) return;
+  if (rad_->count())
+    throw InvalidInput(option_->get_name(), fmt::format("give {} or {}, not both", rad_->get_name(), option_->get_name()));
+  target = rad_from_degrees(degrees_);
+  degrees_given()[field_] = {option_->get_name(), degrees_};
+}
+
 /// The realizability warning of the body resolve() made (SPEC section 1), empty for a real
 /// body: printed by run_reporting_errors() when the command succeeds, so that bad input is
 /// still refused in one line.
 static std::string& realizability_warning() {
+  static std::string warning;
+  return warning;
+}
+
+/// io::implausible_size_warning() of the body resolve() made (a unit slip, mm typed as m),
+/// printed as the realizability warning is.
+static std::string& size_warning() {
   static std::string warning;
   return warning;
 }
@@ -132,6 +172,14 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses us
                          ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
                          ->default_str(fmt::format("0; toy top alone: {:.6g}", rpm_from_rad_per_s(motion.spin)))
                          ->group(used("Motion") ? "Motion" : "");
+  // The initial angles in degrees too (SPEC section 9), beside --theta0 and --phi0.
+  for (const auto& [key, names, help] :
+       {std::tuple{"motion.theta0", "--theta0-deg,--theta0_deg", "degrees, initial theta (instead of --theta0)"},
+        std::tuple{"motion.phi0", "--phi0-deg,--phi0_deg", "degrees, initial phi (instead of --phi0)"}}) {
+    const DegreesOption& d = degrees_.try_emplace(key, command, overrides_.at(key).option, key, names, help).first->second;
+    d.option()->default_str(
+        fmt::format("0; toy top alone: {:.6g}", degrees_from_rad(*io::config_field(example, motion, key))));
+  }
   if (uses_.table) {
     TableOptions& t = table_options_;
     const auto number = [&](Override& o, const char* name, const char* help, const char* group) {
@@ -183,6 +231,8 @@ void Inputs::resolve(bool allow_general) {
       refuse_unused(overrides_.at(spec.key).option, group == "Motion" ? "motion" : "damping");
   }
   if (!uses_.motion) refuse_unused(spin_rpm_.option, "motion");
+  if (!uses_.motion)
+    for (const auto& [key, d] : degrees_) refuse_unused(d.option(), "motion");
   if (!uses_.damping) refuse_unused(driven_, "damping");
   refuse_empty_values(*command_);
   Body body = example_toy_top();
@@ -222,6 +272,7 @@ void Inputs::resolve(bool allow_general) {
                                                "come from them");
     *io::config_field(body, state, key) = o.value;
   }
+  for (const auto& [key, d] : degrees_) d.apply(*io::config_field(body, state, key));
   if (driven_->count()) body.damping.driven = driven_value_;
   Table table = resolve_table(body);
   const Damping damping = body.damping;  // the parts below make the body's mass properties only
@@ -272,6 +323,7 @@ void Inputs::resolve(bool allow_general) {
                                         : std::string("beyond a double"))
                       : std::string("heavytop: warning: this body cannot exist as given: its principal moments of "
                                     "inertia about the centre of mass break the triangle inequality; going on\n"));
+  size_warning() = io::implausible_size_warning(body);  // said with the realizability warning
   body_ = body;
   state_ = state;
   table_ = table;
@@ -332,7 +384,7 @@ ProgressBar::~ProgressBar() {
 int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
   try {
     const int status = body();
-    std::cerr << realizability_warning();
+    std::cerr << realizability_warning() << size_warning();
     return status;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
@@ -344,6 +396,12 @@ int run_reporting_errors(CLI::App& app, const std::function<int()>& body) {
     std::cerr << fmt::format("heavytop: error: {}\n", printable(e.what()));
     return 2;
   } catch (const InvalidInput& e) {
+    if (const auto it = degrees_given().find(e.key()); it != degrees_given().end()) {  // typed in degrees
+      const DegreesGiven& d = it->second;
+      std::cerr << fmt::format("heavytop: error: {}: {} (here {:g} degrees, {:.6g} rad)\n", d.option, e.rule(), d.degrees,
+                               rad_from_degrees(d.degrees));
+      return 2;
+    }
     std::cerr << fmt::format("heavytop: error: {}: {}\n", flag_of(e.key()), e.rule());
     return 2;
   } catch (const std::bad_alloc&) {

@@ -53,6 +53,31 @@ int run_sweep_under_mpi(int argc, char** argv, bool replace_process);
 /// 64-bit signed integer (CLI11 alone wraps "-1" and 2^64 into an unsigned count).
 CLI::Validator positive_count();
 
+/// `--NAME-deg` beside a command's `--NAME` in rad: the same angle typed in degrees (SPEC
+/// section 9's units people use; rad_from_degrees(), the one conversion). apply() refuses the
+/// two together (exit 2, naming both) and writes the degrees given, in rad, to the field; a
+/// later message about that field (a rule it breaks) names this option and its degrees.
+/// Not copyable: CLI11 holds the address of its value.
+class DegreesOption {
+ public:
+  /// `rad` is the command's option in rad; `field` the name a library message gives its value
+  /// ("max_tilt", "tilt", "motion.theta0"); `names` CLI11's ("--max-tilt-deg").
+  DegreesOption(CLI::App& command, CLI::Option* rad, std::string field, const std::string& names,
+                const std::string& help);
+  DegreesOption(const DegreesOption&) = delete;
+  DegreesOption& operator=(const DegreesOption&) = delete;
+  bool given() const { return option_->count() > 0; }
+  CLI::Option* option() const { return option_; }
+  /// If given: refuses `rad` given too, else sets `target` to the degrees in rad.
+  void apply(double& target) const;
+
+ private:
+  CLI::Option* rad_ = nullptr;
+  CLI::Option* option_ = nullptr;
+  std::string field_;
+  double degrees_ = 0.0;
+};
+
 /// Which of the configuration's sections a command uses: the body always; the motion (--spin,
 /// --theta0, ...) and the damping (--transverse-damping, ..., --driven) unless cleared. An
 /// option of a section the command does not use is refused by Inputs::resolve() (exit 2,
@@ -119,6 +144,7 @@ class Inputs {
   CLI::Option* driven_ = nullptr;              // --driven (motion.driven, a boolean)
   bool driven_value_ = false;
   Override spin_rpm_;                           // --spin-rpm (SPEC section 9)
+  std::map<std::string, DegreesOption> degrees_;  // "motion.theta0" -> --theta0-deg, "motion.phi0" -> --phi0-deg
   struct TableOptions {                         // InputUses::table
     CLI::Option* contact = nullptr;
     std::string contact_value;

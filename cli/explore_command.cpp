@@ -80,10 +80,14 @@ Action add_explore_command(CLI::App& app) {
       ->default_str("100");
   cmd->add_option("--lifetime-horizon", o->damped_horizon,
                   "s, a damped body's run in the page's answer (stability's --lifetime-horizon)");
-  cmd->add_option("--max-tilt", o->max_tilt, "rad, the tilt past which the page's answer says it fell (stability's --max-tilt)")
-      ->default_str("1");
-  return [inputs, o] {
+  auto* max_tilt =
+      cmd->add_option("--max-tilt", o->max_tilt, "rad, the tilt past which the page's answer says it fell (stability's --max-tilt)")
+          ->default_str("1");
+  auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
+                                                      "degrees, the same (instead of --max-tilt)");
+  return [inputs, o, max_tilt_deg] {
     inputs->resolve();
+    max_tilt_deg->apply(o->max_tilt);
     if (inputs->output().empty())
       throw InvalidInput("--output", "give the page's file, e.g. --output explore.html (or - for stdout)");
     validate(*o);  // stability's checks, under stability's flags

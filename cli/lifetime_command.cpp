@@ -23,7 +23,10 @@ Action add_lifetime_command(CLI::App& app) {
   auto* horizon_option = cmd->add_option("--horizon", *horizon,
                                          "s, the longest nonlinear run (default: 10 times the time to the "
                                          "critical spin, or 1000)");
-  cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt past which the top has fallen")->default_str("1");
+  auto* max_tilt =
+      cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt past which the top has fallen")->default_str("1");
+  auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
+                                                      "degrees, the same (instead of --max-tilt)");
   cmd->add_option("--rtol", options->integrator.rtol, "nonlinear: relative tolerance per step")
       ->default_str(fmt::format("{}", options->integrator.rtol));
   cmd->add_option("--atol", options->integrator.atol, "nonlinear: absolute tolerance per step")
@@ -31,9 +34,10 @@ Action add_lifetime_command(CLI::App& app) {
   cmd->add_option("--max-steps", options->integrator.max_steps,
                   "nonlinear: the most integration steps before it gives up")
       ->check(positive_count());
-  return [inputs, options, horizon, horizon_option] {
+  return [inputs, options, horizon, horizon_option, max_tilt_deg] {
     inputs->resolve();
     LifetimeOptions o = *options;
+    max_tilt_deg->apply(o.max_tilt);
     if (horizon_option->count()) o.horizon = *horizon;
     validate(o);
     const Lifetime life = [&] {

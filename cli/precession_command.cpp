@@ -19,8 +19,15 @@ Action add_precession_command(CLI::App& app) {
                     "minimum spin, the permanent rotations about the vertical, each with its initial state");
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
   auto tilt = std::make_shared<double>(0.0);
-  cmd->add_option("--tilt", *tilt, "rad, the axis's angle from the upward vertical, in (0, pi)")->required();
-  return [inputs, tilt] {
+  auto* tilt_option = cmd->add_option("--tilt", *tilt, "rad, the axis's angle from the upward vertical, in (0, pi)");
+  auto tilt_deg = std::make_shared<DegreesOption>(*cmd, tilt_option, "tilt", "--tilt-deg",
+                                                  "degrees, the same angle (instead of --tilt), in (0, 180)");
+  return [inputs, tilt, tilt_option, tilt_deg] {
+    // One of the two is required; a message naming only --tilt misled a person who typed --tilt-deg.
+    if (!tilt_option->count() && !tilt_deg->given())
+      throw InvalidInput("--tilt", "is required: the axis's angle from the upward vertical in rad, or --tilt-deg in "
+                                   "degrees");
+    tilt_deg->apply(*tilt);
     inputs->resolve();
     const Body& body = inputs->body();
     const double spin = inputs->state().spin;

@@ -30,11 +30,20 @@ Action add_stability_command(CLI::App& app) {
       ->default_str("100");
   cmd->add_option("--lifetime-horizon", *lifetime_horizon,
                   "s, a damped body's run (default: lifetime's, 10 times the time to the critical spin)");
-  cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt from the upward vertical past which the top "
-                                                   "has fallen")
-      ->default_str("1");
-  return [inputs, options, lifetime_horizon] {
+  auto* max_tilt = cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt from the upward vertical past "
+                                                                    "which the top has fallen")
+                       ->default_str("1");
+  auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
+                                                      "degrees, the same (instead of --max-tilt)");
+  auto brief = std::make_shared<bool>(false);
+  cmd->add_flag("--brief", *brief, "text: the answer only (the text's first paragraph, for a class), no details");
+  return [inputs, options, lifetime_horizon, max_tilt_deg, brief] {
     inputs->resolve();
+    // The JSON holds the answer as "answer" beside the details; a trimmed JSON would break its keys.
+    if (*brief && inputs->format() != "text")
+      throw InvalidInput("--brief", "gives the answer in words, with --format text only (the JSON's \"answer\" is "
+                                    "the same answer)");
+    max_tilt_deg->apply(options->max_tilt);
     options->damped_horizon = *lifetime_horizon;
     validate(*options);  // before the body's analyses: a bad option costs nothing
     const Body& body = inputs->body();
@@ -43,7 +52,8 @@ Action add_stability_command(CLI::App& app) {
       write_output(inputs->output(),
                    inputs->format() == "json"
                        ? io::table_stability_json(body, table, analysis, analyse_stability(body, analysis.spin))
-                       : io::table_stability_text(body, table, analysis));
+                   : *brief ? io::table_answer_text(analysis.answer, table) + "\n"  // as the text opens
+                            : io::table_stability_text(body, table, analysis));
       return;
     }
     const TopAnalysis analysis = [&] {
@@ -51,7 +61,8 @@ Action add_stability_command(CLI::App& app) {
       return analyse_top(body, inputs->state(), *options, [&bar](double t) { bar.update(t); });
     }();
     write_output(inputs->output(), inputs->format() == "json" ? io::stability_json(body, analysis)
-                                                              : io::stability_text(body, analysis));
+                                   : *brief                     ? io::answer_text(analysis.answer) + "\n"
+                                                                : io::stability_text(body, analysis));
   };
 }
 

@@ -127,11 +127,15 @@ Action add_sweep_command(CLI::App& app) {
       ->take_all();
   cmd->add_option("--model", s->model, "nonlinear: add the column `nonlinear`, the verdict of a simulation")
       ->check(CLI::IsMember({"nonlinear"}));
+  auto* horizon = cmd->add_option("--horizon", s->options.horizon, "s, nonlinear: simulated time of each run")
+                      ->default_str("100");
+  auto* max_tilt = cmd->add_option("--max-tilt", s->options.max_tilt, "rad, nonlinear: a run is stable if its tilt stays below")
+                       ->default_str("0.5");
+  auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
+                                                      "degrees, nonlinear: the same (instead of --max-tilt)");
   // The nonlinear verdict's settings: refused without --model nonlinear, never silently ignored.
   const std::vector<const CLI::Option*> nonlinear_only = {
-      cmd->add_option("--horizon", s->options.horizon, "s, nonlinear: simulated time of each run")->default_str("100"),
-      cmd->add_option("--max-tilt", s->options.max_tilt, "rad, nonlinear: a run is stable if its tilt stays below")
-          ->default_str("0.5"),
+      horizon, max_tilt, max_tilt_deg->option(),
       cmd->add_option("--integrator", s->integrator,
                       "nonlinear: auto (batched Taylor series, the default), taylor (the same), dopri5 or dop853 "
                       "(one point at a time)")
@@ -149,11 +153,12 @@ Action add_sweep_command(CLI::App& app) {
                     "nonlinear: add the column (HDF5: dataset) `nonlinear_tolerance`, the rtol that decided each "
                     "verdict (0: decided without integration, by a symmetric top's closed form or the energy and vertical "
                     "momentum's barrier)")};
-  return [inputs, s, nonlinear_only] {
+  return [inputs, s, nonlinear_only, max_tilt_deg] {
     inputs->resolve();
     if (s->model != "nonlinear")
       for (const CLI::Option* o : nonlinear_only)
         if (o->count()) throw InvalidInput(o->get_name(), "sets the nonlinear verdict: add --model nonlinear");
+    max_tilt_deg->apply(s->options.max_tilt);
     std::vector<SweepAxis> axes;
     for (const auto& v : s->vary) axes.push_back(parse_sweep_axis(v));
     s->options.nonlinear = s->model == "nonlinear";

@@ -64,7 +64,7 @@ std::string body_json(const AssembledBody& body, double gravity) {
   return out.dump(2) + "\n";
 }
 
-std::string body_text(const AssembledBody& body, double gravity) {
+std::string body_text(const AssembledBody& body, double gravity, const std::optional<UprightSpin>& upright) {
   const BodyAssembly& a = body.assembly;
   std::ostringstream out;
   if (!body.names.empty()) {
@@ -82,6 +82,15 @@ std::string body_text(const AssembledBody& body, double gravity) {
   out << fmt::format("Body: A = {:.9g}, B = {:.9g}, C = {:.9g} kg m^2 about O; mass {:.9g} kg; R = {:.9g} m ({})\n",
                      a.A, a.B, a.C, a.total.mass, a.length,
                      a.length > 0 ? "centre of mass above O" : a.length < 0 ? "centre of mass below O" : "at O");
+  if (upright)  // the number a toy maker designs for, in the rpm a motor or a stroboscope reads
+    out << (!upright->critical ? std::string("Minimum spin to stand upright: none holds it upright (the linearized "
+                                             "model, without damping)\n")
+            : *upright->critical == 0.0
+                ? fmt::format("Minimum spin to stand upright: none needed, upright is stable at any spin ({})\n",
+                              a.length < 0 ? "the centre of mass hangs below O" : "the linearized model")
+                : fmt::format("Minimum spin to stand upright (the critical spin of the linearized model, without "
+                              "damping): {}\n",
+                              spin_text(*upright->critical)));
   out << fmt::format("Products of inertia: Ixy = {:.3g}, Ixz = {:.3g}, Iyz = {:.3g} kg m^2; centre of mass off the "
                      "axis: x = {:.3g}, y = {:.3g} m\n",
                      a.Ixy, a.Ixz, a.Iyz, a.offset_x, a.offset_y);

@@ -1,6 +1,9 @@
 #include "heavytop/io/body_parts.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include "heavytop/io/mesh_file.hpp"
 
@@ -33,6 +36,19 @@ AssembledBody assemble_parts(const std::vector<PartSpec>& parts) {
   }
   out.assembly = assemble(out.parts);
   return out;
+}
+
+std::string implausible_size_warning(const Body& body) {
+  // The radius of gyration about O is the body's size as its moments give it (parts or not).
+  const double size = std::max(std::abs(body.length), std::sqrt(std::max({body.A, body.B, body.C}) / body.mass));
+  std::string what;
+  if (body.mass > kPlausibleTopMass) what = fmt::format("a mass of {:.6g} kg", body.mass);
+  if (size > kPlausibleTopSize)
+    what += fmt::format("{}a radius of gyration about O of {:.6g} m", what.empty() ? "" : " and ", size);
+  if (what.empty()) return "";
+  return fmt::format("heavytop: warning: {} is implausible for a hand-held top: sizes typed in mm as m? (a "
+                     "[[body.part]] takes units = \"mm\"); going on\n",
+                     what);
 }
 
 Body as_given(const BodyAssembly& a, Body base) {

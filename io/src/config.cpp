@@ -40,6 +40,25 @@ constexpr Field kFields[] = {
     {"damping.friction", nullptr, nullptr, &Damping::friction},
 };
 
+// [motion] keys in the units people use (SPEC section 9), each beside its SI key: read into
+// the SI key's field, one of the two at most.
+struct UnitAlias {
+  const char* key;     // "motion.spin_rpm"
+  const char* si_key;  // "motion.spin"
+  double (*to_si)(double);
+};
+constexpr UnitAlias kUnitAliases[] = {
+    {"motion.spin_rpm", "motion.spin", [](double rpm) { return rad_per_s_from_rpm(rpm); }},
+    {"motion.theta0_deg", "motion.theta0", [](double degrees) { return rad_from_degrees(degrees); }},
+    {"motion.phi0_deg", "motion.phi0", [](double degrees) { return rad_from_degrees(degrees); }},
+};
+
+const UnitAlias* unit_alias(std::string_view key) {
+  for (const UnitAlias& alias : kUnitAliases)
+    if (key == alias.key) return &alias;
+  return nullptr;
+}
+
 std::vector<std::string> keys_starting(std::string_view prefix) {
   std::vector<std::string> keys;
   for (const Field& f : kFields)
@@ -65,7 +84,7 @@ struct PartKey {
 constexpr PartKey kPartKeys[] = {
     {"shape", ""},           {"radius", "cylinder tube cone sphere"}, {"inner_radius", "tube"},
     {"height", "cylinder tube cone"}, {"z0", "cylinder tube cone sphere"}, {"apex", "cone"},
-    {"density", ""},         {"mass", ""},          {"file", "mesh"},  {"units", "mesh"},
+    {"density", ""},         {"mass", ""},          {"file", "mesh"},  {"units", ""},
 };
 
 std::string string_of(const toml::node& node, const std::string& key) {
@@ -124,6 +143,10 @@ PartSpec parse_part(const toml::table& table, std::size_t index, const std::stri
       else if (name == "density") part.solid.density = x;
       else if (name == "mass") part.solid.mass = x;
     }
+  }
+  if (!part.mesh) {  // the lengths in m from here on (density stays kg/m^3: units names the lengths only)
+    for (double* length : {&part.solid.radius, &part.solid.inner_radius, &part.solid.height, &part.solid.z0})
+      *length *= part.scale;
   }
   if (part.mesh) {
     if (part.file.empty()) throw InvalidInput(base + ".file", "is required for shape 'mesh' (STL, OBJ or PLY)");
@@ -234,9 +257,9 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
         for (const auto& part : *parts) config.parts.push_back(parse_part(*part.as_table(), config.parts.size(), source));
         continue;
       }
-      if (key == "motion.spin_rpm") {  // SPEC section 9: stored in rad/s
-        config.motion.spin = rad_per_s_from_rpm(number_of(value, key));
-        config.given.insert("motion.spin_rpm");
+      if (const UnitAlias* alias = unit_alias(key)) {  // SPEC section 9: stored in SI (rad/s, rad)
+        *config_field(config.body, config.motion, alias->si_key) = alias->to_si(number_of(value, key));
+        config.given.insert(alias->key);
         continue;
       }
       const auto& general = general_body_keys();
@@ -266,10 +289,13 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
       else throw InvalidInput(key, "must be a number or a string");
     }
   }
-  if (config.given.count("motion.spin_rpm")) {
-    if (config.given.count("motion.spin")) throw InvalidInput("motion.spin_rpm", "give spin or spin_rpm, not both");
-    config.given.erase("motion.spin_rpm");
-    config.given.insert("motion.spin");
+  for (const UnitAlias& alias : kUnitAliases) {
+    if (!config.given.count(alias.key)) continue;
+    const std::string_view si_name = std::string_view(alias.si_key).substr(7), name = std::string_view(alias.key).substr(7);
+    if (config.given.count(alias.si_key))
+      throw InvalidInput(alias.key, fmt::format("give {} or {}, not both", si_name, name));
+    config.given.erase(alias.key);
+    config.given.insert(alias.si_key);
   }
   if (!config.parts.empty()) {
     for (const std::string& key : required_body_keys())

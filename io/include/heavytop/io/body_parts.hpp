@@ -35,6 +35,16 @@ std::optional<double> touch_tilt(const std::vector<PartSpec>& parts, const Body&
 /// [[A, -Ixy, -Ixz], [-Ixy, B, -Iyz], [-Ixz, -Iyz, C]].
 AssembledBody assemble_moments(const Body& body, const std::map<std::string, double>& general);
 
+/// kg and m: a body heavier, or with a radius of gyration about O (or |length|) larger, is
+/// implausible for a hand-held top, the likely sign of sizes typed in mm as m.
+inline constexpr double kPlausibleTopMass = 100.0;
+inline constexpr double kPlausibleTopSize = 10.0;
+
+/// One warning line (ending in a newline) naming what is implausible about `body` for a
+/// hand-held top (kPlausibleTopMass, kPlausibleTopSize) and the likely unit slip; "" for a
+/// plausible body. Not an error: a flywheel or a scaled body may be meant.
+std::string implausible_size_warning(const Body& body);
+
 /// `base` (its gravity and damping kept) with the assembly's moments, mass and length and its
 /// general part (SPEC section 11) as they are, about the body axes the parts are given in: the
 /// general body `simulate --model nonlinear` integrates (body_of() makes the ordinary body).

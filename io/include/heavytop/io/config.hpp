@@ -49,7 +49,8 @@ struct PartSpec {
   bool mesh = false;       ///< shape = "mesh"
   SolidPart solid;         ///< the solid's shape and sizes; density or mass for a mesh too
   std::string file;        ///< mesh: the path, a relative one resolved against the configuration's folder
-  double scale = 1.0;      ///< mesh: m per unit of the file (units "m": 1, "mm": 1e-3)
+  double scale = 1.0;      ///< m per unit of the part's lengths (units "m": 1, "mm": 1e-3): a mesh's
+                           ///< coordinates; a solid's sizes are already in m (parse_configuration())
   /// "body.part[i]" followed by the label in parentheses, as messages name the part.
   std::string name(std::size_t index) const;
 };
@@ -82,7 +83,10 @@ struct Configuration {
 /// "section.key" for an unknown section or key or a value of the wrong type; nothing else for
 /// any bytes (fuzz/fuzz_config.cpp). Does not check the body's rules (validate() does, once
 /// the command line's values are applied). `motion.spin_rpm` is stored as motion.spin in rad/s
-/// (given as "motion.spin" too); giving both is refused. No mesh file is read here.
+/// (given as "motion.spin" too), `motion.theta0_deg` and `motion.phi0_deg` as motion.theta0 and
+/// motion.phi0 in rad; giving both of a pair is refused. A solid part's `units = "mm"` is
+/// applied here (its radius, inner_radius, height and z0 stored in m); its density stays in
+/// kg/m^3 and its mass in kg. No mesh file is read here.
 Configuration parse_configuration(std::string_view text, const std::string& source, const std::string& path_key);
 
 /// The largest configuration file read_configuration() reads (bytes): more is refused, so a
