@@ -251,6 +251,8 @@ const testValues = {
   "--slip-speed": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "0.5"],
   "--horizon": [["--spin", "100"], "20"], "--max-tilt": [["--spin", "60"], "0.5"],
   "--lifetime-horizon": [["--axial-damping", "2e-6"], "50"],
+  // Below its critical spin the toy top nutates to 1.45 rad: its 100 s need more steps than these.
+  "--max-steps": [["--spin", "100", "--max-tilt", "2"], "20000"],
 };
 function stabilityOptions() {
   const help = spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout;
@@ -404,6 +406,87 @@ async function checkTable(browser) {
     }
     await shown.page.close();
   }
+}
+
+// ---- runs that do not end (issue 46): the page's step budget ------------------------------------
+// The page gives the commands that take it its own --max-steps (its limit, web/heavytop_wasm.cpp):
+// a run that needs more ends as the command line's with that --max-steps, not after the command
+// line's 10^8 steps (minutes in WebAssembly, the page frozen). A larger max_steps is refused.
+const fromMessage = (re, text) => Number((re.exec(text || "") || [])[1]);
+async function checkLongRuns(browser, page) {
+  const toy = { body: { A: 4.35e-5, B: 4.35e-5, C: 1.2e-5, mass: 0.06, length: 0.025 }, motion: { spin: 200, theta0: 0.05 } };
+  const thrown = (f, ...a) => page.evaluate((f, a) => {
+    try { return { value: heavytop[f](...a) }; } catch (e) { return { message: e.message, isError: e instanceof Error }; }
+  }, f, a);
+  const over = await thrown("simulate", toy, { max_steps: 1e12 });
+  const limit = fromMessage(/^heavytop: error: --max-steps: must be at most (\d+) in the page/, over.message);
+  if (!check("simulate(toy, {max_steps: 1e12}) is refused naming --max-steps and the page's limit", limit > 0, over.message)) return;
+  for (const f of ["simulate", "stability"]) {
+    const r = await thrown(f, toy, { max_steps: limit + 1 });
+    check(`${f}(toy, {max_steps: ${limit + 1}}) is refused as above`, r.isError && r.message === over.message, r.message);
+  }
+  const toml = await page.evaluate((c) => heavytopExplorer.toml(c), toy);
+  // simulate over 1e7 s: the command line's failure at --max-steps LIMIT, naming the time reached;
+  // a max_steps below the limit is the command line's too.
+  for (const [options, steps] of [[{ t_end: 1e7 }, limit], [{ t_end: 1e7, max_steps: 1000 }, 1000]]) {
+    const r = await thrown("simulate", toy, options);
+    const native = cli(toml, ["simulate", "--t-end", "1e7", "--max-steps", String(steps), "--format", "csv"]);
+    const reached = fromMessage(/before t = ([-+.\de]+) s/, r.message);
+    check(`simulate(toy, ${JSON.stringify(options)}) throws the command line's failure with --max-steps ${steps}, naming the time reached`,
+          r.isError && native.status === 1 && sameWords(r.message, native.stderr) && r.message.includes(`max_steps = ${steps} `) &&
+          reached > 0 && reached < 1e7, `${r.message || "no error"} | ${native.stderr}`);
+  }
+  // The budget is the nonlinear model's (simulate refuses --max-steps with another): a linear model
+  // over 1e7 s, asked for or the configuration's [simulate] model, is the command line's run.
+  for (const [cfg, options, args] of [[toy, { model: "linearized", t_end: 1e7, samples: 11 }, ["--model", "linearized"]],
+                                      [{ ...toy, simulate: { model: "body-fixed" } }, { t_end: 1e7, samples: 11 }, []]]) {
+    const r = await thrown("simulate", cfg, options);
+    const native = cli(await page.evaluate((c) => heavytopExplorer.toml(c), cfg), ["simulate", ...args, "--t-end", "1e7", "--samples", "11", "--format", "csv"]);
+    const d = r.message || native.status !== 0 ? [r.message || native.stderr] : compareTrajectory(r.value, parseCsv(native.stdout), 1e-9);
+    check(`simulate(${cfg.simulate ? "[simulate] model = body-fixed" : "toy"}, ${JSON.stringify(options)}): no budget, the command line's run`,
+          d.length === 0, d.slice(0, 3).join("; "));
+  }
+  // In the page: a spin of 1e7 rad/s typed in, whose 10 s of motion need more steps than the
+  // budget: the motion's panel says so in the command line's words (the answer is a proof: no run).
+  await page.evaluate((c) => heavytopExplorer.open({ config: c }, false), toy);
+  await page.select("#spin-unit", "rad/s");
+  await page.click("#spin", { clickCount: 3 });
+  await page.type("#spin", "1e7");
+  await page.waitForFunction(() => /^motion: /.test(document.getElementById("motion-info").textContent), { timeout: 60000 }).catch(() => {});
+  const motion = await page.$eval("#motion-info", (e) => e.textContent);
+  const fast = cli(await page.evaluate(() => heavytopExplorer.toml(heavytopExplorer.config())),
+                   ["simulate", "--model", "nonlinear", "--t-end", "10", "--samples", "1001", "--max-steps", String(limit), "--format", "csv"]);
+  check("a spin of 1e7 rad/s typed in: the motion's panel shows the run's failure at the page's budget, as the command line words it",
+        /^motion: /.test(motion) && fast.status === 1 && sameWords(motion.replace(/^motion: /, ""), fast.stderr), `${motion} | ${fast.stderr}`);
+
+  // The answer's run over a horizon of 1e7 s (a body not proven stable, which does not fall): it
+  // stops at the page's budget and says so, the horizon it covered, as `stability --max-steps`.
+  if (!check("heavytop stability takes --max-steps (the page's budget for the answer's run)",
+             /^ {2}--max-steps\b/m.test(spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout),
+             "cli/stability_command.cpp has no --max-steps: the page cannot bound stability's run")) return;
+  const slow = { ...toy, motion: { spin: 100, theta0: 0.05 } };  // below its critical spin, it nutates to 1.45 rad
+  const slowToml = await page.evaluate((c) => heavytopExplorer.toml(c), slow);
+  const args = ["--horizon", "1e7", "--max-tilt", "2", "--max-steps", String(limit)];
+  const got = await thrown("stability", slow, { horizon: 1e7, max_tilt: 2 });
+  const native = cli(slowToml, ["stability", ...args, "--format", "json"]);
+  const a = got.value && got.value.answer;
+  const diff = got.message || native.status !== 0 ? [got.message || native.stderr] : compare(got.value, JSON.parse(native.stdout), "", 1e-12, 0, []);
+  check(`stability(body, {horizon: 1e7}) stops at the page's budget and says so (horizon ${a && a.horizon} s), as stability ${args.join(" ")}`,
+        diff.length === 0 && a.horizon > 0 && a.horizon < 1e7 && /could be computed only to t = /.test(a.reason), diff.slice(0, 3).join("; ") || (a && a.reason));
+  // In the page: the horizon typed in, the answer shown is that one, in stability's words.
+  await page.evaluate((c) => heavytopExplorer.open({ config: c }, false), slow);
+  await page.click("#max_tilt", { clickCount: 3 });
+  await page.type("#max_tilt", "2");
+  await page.click("#horizon", { clickCount: 3 });
+  await page.type("#horizon", "1e7");
+  await page.waitForFunction(() => { const c = heavytopExplorer.current(); return c && c.options.horizon === 1e7; }, { timeout: 60000 }).catch(() => {});
+  const shown = await pageState(page);
+  const text = cli(slowToml, ["stability", ...args, "--format", "text"]);
+  const words = text.status === 0 ? text.stdout.split("\n\n")[0] : text.stderr;
+  const box = await page.$eval("#answer", (e) => e.textContent);
+  check("the horizon 1e7 typed in: the page shows the answer of the run that stopped, in stability's words",
+        sameWords(shown.words, words) && /could be computed only to t = /.test(box), `${box} | ${words}`);
+  await page.evaluate(() => { for (const id of ["horizon", "max_tilt"]) document.getElementById(id).value = ""; });
 }
 
 // ---- hostile input (issue 46) -------------------------------------------------------------------
@@ -693,6 +776,7 @@ async function checkHostile(browser, page) {
   check("no request leaves the page's folder", foreign.length === 0, foreign.join(" "));
   check("no console error", errors.length === 0, errors.join(" | "));
   await checkHostile(browser, page);
+  await checkLongRuns(browser, page);
   await checkEveryOption(browser, page);
   await checkTable(browser);
   if (reportDir) await checkReport(browser);

@@ -85,6 +85,12 @@ std::string slurp(const char* path) {
 // (the CSV's text, then its rows in JavaScript); the command line's CSV streams any number.
 constexpr long long kMaxPageSamples = 2'000'000;
 
+// The most integration steps a run of the page may take (--max-steps, where the command takes it;
+// the command line's 10^8 are minutes here, the page frozen). The slowest step of the page's runs,
+// a damped body's Taylor step, took 2.85 us in Node (web/step_rate.cjs, web/README.md): a run that
+// reaches the limit ends within about 3 s.
+constexpr long long kPageMaxSteps = 1'000'000;
+
 // The flags the page sets itself (ARGS may not): the configuration's file, the output and its format;
 // --help would print the help and succeed with no output.
 bool reserved_flag(const std::string& word) {
@@ -102,7 +108,7 @@ Result refused(const std::string& key, const std::string& rule) {
 }
 
 // The page's options (ARGS: "--flag", "value" pairs) checked before the command runs: no flag the
-// page sets itself, and --samples within kMaxPageSamples. Unknown flags are CLI11's to refuse.
+// page sets itself, --samples within kMaxPageSamples and --max-steps within kPageMaxSteps. Unknown flags are CLI11's to refuse.
 std::optional<Result> refuse_page_args(const char* command, const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < args.size(); i += 2) {
     const std::string& flag = args[i];
@@ -118,26 +124,43 @@ std::optional<Result> refuse_page_args(const char* command, const std::vector<st
                                                 "(the command line's --format csv streams any number)",
                                                 kMaxPageSamples));
     }
+    if (flag == "--max-steps" && i + 1 < args.size()) {
+      char* end = nullptr;
+      const double n = std::strtod(args[i + 1].c_str(), &end);
+      if (end != args[i + 1].c_str() && *end == '\0' && n > static_cast<double>(kPageMaxSteps))
+        return refused("--max-steps", fmt::format("must be at most {} in the page, which a longer run would hold still "
+                                                  "(the command line's default is 10^8 steps, with a progress bar)",
+                                                  kPageMaxSteps));
+    }
   }
   return std::nullopt;
 }
 
-// `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it.
-Result run(const char* command, Make make, const std::string& config, std::vector<std::string> args) {
+bool has_flag(const std::vector<std::string>& args, const char* flag) {
+  for (std::size_t i = 0; i < args.size(); i += 2)
+    if (args[i] == flag) return true;
+  return false;
+}
+
+// `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it;
+// with `--max-steps kPageMaxSteps` when `budget`, the command takes it and ARGS do not give it.
+Result run(const char* command, Make make, const std::string& config, std::vector<std::string> args, bool budget = true) {
   {
     std::ofstream out(kConfig, std::ios::binary | std::ios::trunc);
     out << config;
   }
   std::ofstream(kOutput, std::ios::binary | std::ios::trunc).close();
-  std::vector<std::string> words = {"heavytop", command, "--config", kConfig};
-  words.insert(words.end(), args.begin(), args.end());
-  words.insert(words.end(), {"--output", kOutput});
-  std::vector<char*> argv;
-  for (std::string& w : words) argv.push_back(w.data());
-
   CLI::App app{"heavytop"};
   app.require_subcommand(0, 1);
   cli::Action action = make(app);
+
+  std::vector<std::string> words = {"heavytop", command, "--config", kConfig};
+  words.insert(words.end(), args.begin(), args.end());
+  if (budget && app.get_subcommand(command)->get_option_no_throw("--max-steps") && !has_flag(args, "--max-steps"))
+    words.insert(words.end(), {"--max-steps", std::to_string(kPageMaxSteps)});
+  words.insert(words.end(), {"--output", kOutput});
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
   std::ostringstream err;
   std::streambuf* old = std::cerr.rdbuf(err.rdbuf());
   Result r;
@@ -239,13 +262,16 @@ Result view_of(const std::string& config, double t_end, int samples) {
         parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
                                : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
       if (const Table& table = inputs->table(); table.on_table()) {
+        Tolerances tolerances;
+        tolerances.max_steps = kPageMaxSteps;
         const TableRun run = simulate_on_table(inputs->body(), table, inputs->state(),
-                                               SampleGrid{t_end, static_cast<std::size_t>(samples)});
+                                               SampleGrid{t_end, static_cast<std::size_t>(samples)}, tolerances);
         cli::write_output(inputs->output(), table_view(inputs->body(), table, run.trajectory, parts));
         return;
       }
       SimulateOptions options;
       options.integrator = Integrator::Auto;
+      options.adaptive.max_steps = options.splitting.max_steps = kPageMaxSteps;
       const Simulation run = simulate(Model::Nonlinear, inputs->body(), inputs->state(),
                                       sample_times(t_end, static_cast<std::size_t>(samples)), options);
       if (!run.summary.ok()) throw cli::Failure(run.summary.message);
@@ -291,12 +317,27 @@ emscripten::val body(const std::string& config) {
 
 emscripten::val js_view(const std::string& config, double t_end, int samples) { return to_js(view_of(config, t_end, samples)); }
 
-// args: the simulate flags the page passes (--model, --t-end, --samples), as text.
+// The model simulate runs (cli/simulate_command.cpp's order): ARGS' last --model, else the
+// configuration's simulate.model, else nonlinear (also for a configuration that does not parse:
+// the command refuses it before any run).
+std::string simulate_model(const std::string& config, const std::vector<std::string>& args) {
+  std::optional<std::string> model;
+  for (std::size_t i = 0; i + 1 < args.size(); i += 2)
+    if (args[i] == "--model") model = args[i + 1];
+  if (!model) try {
+      model = io::parse_configuration(config, kConfig, "--config").string("simulate.model");
+    } catch (const std::exception&) {
+    }
+  return model.value_or("nonlinear");
+}
+
+// args: the simulate flags the page passes (--model, --t-end, --samples), as text. The step
+// budget only for the nonlinear model (simulate refuses --max-steps with any other).
 emscripten::val js_simulate(const std::string& config, const std::vector<std::string>& args) {
   if (auto no = refuse_page_args("simulate", args)) return to_js(*no);
   std::vector<std::string> all = args;
   all.insert(all.end(), {"--format", "csv"});
-  return to_js(run("simulate", cli::add_simulate_command, config, all));
+  return to_js(run("simulate", cli::add_simulate_command, config, all, simulate_model(config, args) == "nonlinear"));
 }
 
 emscripten::val js_stability_map(const std::string& config, const std::string& key_x, double x0, double x1,
