@@ -489,6 +489,56 @@ async function checkLongRuns(browser, page) {
   await page.evaluate(() => { for (const id of ["horizon", "max_tilt"]) document.getElementById(id).value = ""; });
 }
 
+// ---- the tilt in degrees (issue 45) ---------------------------------------------------------------
+// The tilt's unit selector, as the spin's rpm: 30 typed in degrees is the answer of
+// 0.5235987755982988 rad typed in rad; the configuration stays in rad (motion.theta0), a change of
+// unit keeps the tilt's double, and a link made in degrees opens at the same configuration.
+async function checkDegrees(browser) {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on("pageerror", (err) => errors.push(String(err)));
+  page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+  await page.goto("file://" + path.resolve(pageFile), { waitUntil: "load" });
+  await page.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 60000 });
+  const shownAfter = async (unit, text) => {
+    if (unit) await page.select("#theta0-unit", unit);
+    if (text !== undefined) {
+      await page.click("#theta0", { clickCount: 3 });
+      await page.keyboard.press("Backspace");
+      await page.type("#theta0", text);
+    }
+    await new Promise((r) => setTimeout(r, 600));
+    return page.evaluate(() => ({ field: document.getElementById("theta0").value, config: heavytopExplorer.config(),
+                                  current: heavytopExplorer.current(), answer: document.getElementById("answer").textContent }));
+  };
+  if (!check("the tilt has a unit selector (rad, degrees)", await page.$("#theta0-unit option[value=deg]") !== null)) { await page.close(); return; }
+  const start = await shownAfter();
+  const inDegrees = await shownAfter("deg");
+  check("choosing degrees shows the tilt in degrees, the configuration's tilt unchanged (rad)",
+        Number(inDegrees.field) === Number((start.config.motion.theta0 * 180 / Math.PI).toPrecision(12)) &&
+        inDegrees.config.motion.theta0 === start.config.motion.theta0, `${start.field} rad -> ${inDegrees.field} degrees, theta0 ${inDegrees.config.motion.theta0}`);
+  const thirty = await shownAfter(null, "30");
+  const rad = await shownAfter("rad", "0.5235987755982988");
+  check("30 degrees typed in is motion.theta0 = 0.5235987755982988 rad", thirty.config.motion.theta0 === 0.5235987755982988 &&
+        rad.config.motion.theta0 === 0.5235987755982988, `${thirty.config.motion.theta0}, ${rad.config.motion.theta0}`);
+  const diff = thirty.current && rad.current ? compare(thirty.current.stability, rad.current.stability, "", 0, 0, []) : ["no answer"];
+  check("30 degrees gives the answer of 0.5235987755982988 rad (its JSON and words, exactly)",
+        diff.length === 0 && thirty.current.words === rad.current.words && thirty.answer === rad.answer && compare(thirty.current.stability, start.current.stability, "", 1e-12, 0, []).length > 0,
+        diff.slice(0, 3).join("; ") || thirty.answer.slice(0, 100));
+  // Back in degrees: a link of the page's configuration opens at the same configuration.
+  await shownAfter("deg");
+  const again = await page.evaluate(() => {
+    const c = heavytopExplorer.config();
+    heavytopExplorer.open("#config=" + encodeURIComponent(JSON.stringify(c)));
+    return { before: c, after: heavytopExplorer.config(), field: document.getElementById("theta0").value };
+  });
+  check("in degrees, a link of the page's configuration opens at the same configuration", compare(again.after, again.before, "", 0, 0, []).length === 0 &&
+        again.field === "30", `${again.field}: ${JSON.stringify(again.after.motion)}`);
+  await page.screenshot({ path: path.join(work, "explore-degrees.png"), fullPage: false });
+  check("the tilt in degrees: no page error", errors.length === 0, errors.join(" | "));
+  await page.close();
+}
+
 // ---- hostile input (issue 46) -------------------------------------------------------------------
 async function checkHostile(browser, page) {
   const toy = { body: { A: 4.35e-5, B: 4.35e-5, C: 1.2e-5, mass: 0.06, length: 0.025 }, motion: { spin: 200, theta0: 0.05 } };
@@ -777,6 +827,7 @@ async function checkHostile(browser, page) {
   check("no console error", errors.length === 0, errors.join(" | "));
   await checkHostile(browser, page);
   await checkLongRuns(browser, page);
+  await checkDegrees(browser);
   await checkEveryOption(browser, page);
   await checkTable(browser);
   if (reportDir) await checkReport(browser);
