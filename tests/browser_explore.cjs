@@ -418,13 +418,23 @@ async function checkLongRuns(browser, page) {
   const thrown = (f, ...a) => page.evaluate((f, a) => {
     try { return { value: heavytop[f](...a) }; } catch (e) { return { message: e.message, isError: e instanceof Error }; }
   }, f, a);
-  const over = await thrown("simulate", toy, { max_steps: 1e12 });
-  const limit = fromMessage(/^heavytop: error: --max-steps: must be at most (\d+) in the page/, over.message);
-  if (!check("simulate(toy, {max_steps: 1e12}) is refused naming --max-steps and the page's limit", limit > 0, over.message)) return;
-  for (const f of ["simulate", "stability"]) {
-    const r = await thrown(f, toy, { max_steps: limit + 1 });
-    check(`${f}(toy, {max_steps: ${limit + 1}}) is refused as above`, r.isError && r.message === over.message, r.message);
+  // The limits: simulate's (Taylor, DOP853: the slowest steps) and stability's on a pivot (DOPRI5),
+  // larger; a table's answer (DOP853) has simulate's.
+  const limits = {};
+  const onTable = { ...toy, body: { ...toy.body, tip_radius: 0.002 }, table: { contact: "frictionless" } };
+  for (const [f, cfg, what] of [["simulate", toy, "simulate"], ["stability", toy, "stability"], ["stability", onTable, "stability on a table"]]) {
+    const over = await thrown(f, cfg, { max_steps: 1e12 });
+    const limit = fromMessage(/^heavytop: error: --max-steps: must be at most (\d+) in the page/, over.message);
+    const just = limit > 0 ? await thrown(f, cfg, { max_steps: limit + 1 }) : {};
+    limits[what] = check(`${what}: max_steps 1e12 and the limit + 1 are refused naming --max-steps and the page's limit`,
+                         limit > 0 && just.isError && just.message === over.message, over.message) ? limit : 0;
   }
+  const within = await thrown("simulate", toy, { t_end: 1, max_steps: limits.simulate });
+  check("simulate(toy, {max_steps: the limit}) is taken", !within.message, within.message);
+  const limit = limits.simulate;
+  if (!limit) return;
+  check("stability's limit on a pivot (DOPRI5) is larger than simulate's; on a table it is simulate's",
+        limits.stability > limit && limits["stability on a table"] === limit, JSON.stringify(limits));
   const toml = await page.evaluate((c) => heavytopExplorer.toml(c), toy);
   // simulate over 1e7 s: the command line's failure at --max-steps LIMIT, naming the time reached;
   // a max_steps below the limit is the command line's too.
@@ -461,18 +471,34 @@ async function checkLongRuns(browser, page) {
 
   // The answer's run over a horizon of 1e7 s (a body not proven stable, which does not fall): it
   // stops at the page's budget and says so, the horizon it covered, as `stability --max-steps`.
-  if (!check("heavytop stability takes --max-steps (the page's budget for the answer's run)",
-             /^ {2}--max-steps\b/m.test(spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout),
-             "cli/stability_command.cpp has no --max-steps: the page cannot bound stability's run")) return;
+  const takes = /^ {2}--max-steps\b/m.test(spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout);
+  if (!check("heavytop stability takes --max-steps (the page's budget for the answer's run)", takes,
+             takes ? "" : "cli/stability_command.cpp has no --max-steps: the page cannot bound stability's run")) return;
   const slow = { ...toy, motion: { spin: 100, theta0: 0.05 } };  // below its critical spin, it nutates to 1.45 rad
   const slowToml = await page.evaluate((c) => heavytopExplorer.toml(c), slow);
-  const args = ["--horizon", "1e7", "--max-tilt", "2", "--max-steps", String(limit)];
+  const stabilityLimit = limits.stability;
+  const args = ["--horizon", "1e7", "--max-tilt", "2", "--max-steps", String(stabilityLimit)];
+  // A max_steps of the person's: the command line's answer with it (its numbers to 1e-12, 1e-6 integrated).
+  const few = await thrown("stability", slow, { horizon: 1e7, max_tilt: 2, max_steps: 10000 });
+  const fewNative = cli(slowToml, ["stability", "--horizon", "1e7", "--max-tilt", "2", "--max-steps", "10000", "--format", "json"]);
+  const fewDiff = few.message || fewNative.status !== 0 ? [few.message || fewNative.stderr] : compare(few.value, JSON.parse(fewNative.stdout), "", 1e-12, 0, []);
+  check(`stability(body, {horizon: 1e7, max_tilt: 2, max_steps: 10000}) answers as stability --max-steps 10000: the run stopped (horizon ${few.value && few.value.answer.horizon} s)`,
+        fewDiff.length === 0 && few.value.answer.horizon < 1e7 && /could be computed only to t = .*max_steps = 10000 /.test(few.value.answer.reason),
+        fewDiff.slice(0, 3).join("; ") || (few.value && few.value.answer.reason));
+  // The page's limit: the same, but the time reached after millions of steps is a sum of as many
+  // step sizes, and the page's (WebAssembly) and the command line's step controllers part at a
+  // rounding along the way (the same to the last digit after 10^4 steps, 6.5e-5 apart after 10^5,
+  // 4.4e-5 after 10^6): it is compared as the stopped run's message shows it, to 1e-4.
   const got = await thrown("stability", slow, { horizon: 1e7, max_tilt: 2 });
   const native = cli(slowToml, ["stability", ...args, "--format", "json"]);
   const a = got.value && got.value.answer;
-  const diff = got.message || native.status !== 0 ? [got.message || native.stderr] : compare(got.value, JSON.parse(native.stdout), "", 1e-12, 0, []);
-  check(`stability(body, {horizon: 1e7}) stops at the page's budget and says so (horizon ${a && a.horizon} s), as stability ${args.join(" ")}`,
-        diff.length === 0 && a.horizon > 0 && a.horizon < 1e7 && /could be computed only to t = /.test(a.reason), diff.slice(0, 3).join("; ") || (a && a.reason));
+  const want = native.status === 0 ? JSON.parse(native.stdout) : null;
+  const diff = got.message || !want ? [got.message || native.stderr]
+                                    : compare(got.value, want, "", 1e-12, 0, []).filter((d) => !d.startsWith(".answer.horizon: "));
+  const reached = want && Math.abs(a.horizon - want.answer.horizon) <= 1e-4 * want.answer.horizon;
+  check(`stability(body, {horizon: 1e7, max_tilt: 2}) stops at the page's limit and says so (horizon ${a && a.horizon} s), as stability ${args.join(" ")}`,
+        diff.length === 0 && reached && a.horizon < 1e7 && new RegExp(`could be computed only to t = .*max_steps = ${stabilityLimit} `).test(a.reason),
+        diff.slice(0, 3).join("; ") || `${a && a.reason} | ${want && want.answer.horizon}`);
   // In the page: the horizon typed in, the answer shown is that one, in stability's words.
   await page.evaluate((c) => heavytopExplorer.open({ config: c }, false), slow);
   await page.click("#max_tilt", { clickCount: 3 });

@@ -16,6 +16,7 @@ const cases = [
   ["toy top, dopri5", toy, ["--integrator", "dopri5"]],
   ["toy top, dop853", toy, ["--integrator", "dop853"]],
   ["damped toy top, auto", toy + "[damping]\naxial = 1e-9\ntransverse = 1e-9\n", []],
+  ["damped toy top, dopri5 (lifetime's run)", toy + "[damping]\naxial = 1e-9\ntransverse = 1e-9\n", ["--integrator", "dopri5"]],
   ["tippe-top.toml on its table, auto", fs.readFileSync(path.join(examples, "tippe-top.toml"), "utf8"), []],
 ];
 globalThis.createHeavytopCore = require(path.resolve(corePath));
@@ -43,5 +44,23 @@ createHeavytopCore().then((core) => {
                             steps_per_s: Math.round((1000 * steps) / ms) }
                         : { error: `not stopped by --max-steps ${steps}: exit ${last.status} ${last.message}` };
   }
+  // stability's answer (DOPRI5 with the tilt watched): the toy top below its critical spin, which
+  // nutates to 1.45 rad and never passes --max-tilt 2, stopped by --max-steps (when stability takes it).
+  const name = "stability's answer, toy top at 100 rad/s, --max-tilt 2";
+  const times = [];
+  let answer;
+  for (let i = 0; i < repeats; i++) {
+    const args = new core.StringList();
+    for (const a of ["--horizon", "1e9", "--max-tilt", "2", "--max-steps", String(steps)]) args.push_back(a);
+    const t0 = process.hrtime.bigint();
+    const r = core.stability(toy.replace("spin = 200.0", "spin = 100.0"), args, "json");
+    times.push(Number(process.hrtime.bigint() - t0) / 1e6);
+    args.delete();
+    answer = r.status === 0 ? JSON.parse(new TextDecoder().decode(r.output)).answer : { reason: r.message };
+  }
+  times.sort((a, b) => a - b);
+  out[name] = (answer.reason || "").includes(`max_steps = ${steps} `)
+    ? { integrator: "dopri5", us_per_step: Number(((1000 * times[Math.floor(repeats / 2)]) / steps).toPrecision(3)) }
+    : { error: `not stopped by --max-steps ${steps}: ${answer.reason}` };
   console.log(JSON.stringify({ steps, repeats, median_of: repeats, cases: out }, null, 1));
 });
