@@ -251,6 +251,8 @@ const testValues = {
   "--slip-speed": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "0.5"],
   "--horizon": [["--spin", "100"], "20"], "--max-tilt": [["--spin", "60"], "0.5"],
   "--lifetime-horizon": [["--axial-damping", "2e-6"], "50"],
+  // Below its critical spin the toy top nutates to 1.45 rad: its 100 s need more steps than these.
+  "--max-steps": [["--spin", "100", "--max-tilt", "2"], "20000"],
 };
 function stabilityOptions() {
   const help = spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout;
@@ -404,6 +406,163 @@ async function checkTable(browser) {
     }
     await shown.page.close();
   }
+}
+
+// ---- runs that do not end (issue 46): the page's step budget ------------------------------------
+// The page gives the commands that take it its own --max-steps (its limit, web/heavytop_wasm.cpp):
+// a run that needs more ends as the command line's with that --max-steps, not after the command
+// line's 10^8 steps (minutes in WebAssembly, the page frozen). A larger max_steps is refused.
+const fromMessage = (re, text) => Number((re.exec(text || "") || [])[1]);
+async function checkLongRuns(browser, page) {
+  const toy = { body: { A: 4.35e-5, B: 4.35e-5, C: 1.2e-5, mass: 0.06, length: 0.025 }, motion: { spin: 200, theta0: 0.05 } };
+  const thrown = (f, ...a) => page.evaluate((f, a) => {
+    try { return { value: heavytop[f](...a) }; } catch (e) { return { message: e.message, isError: e instanceof Error }; }
+  }, f, a);
+  // The limits: simulate's (Taylor, DOP853: the slowest steps) and stability's on a pivot (DOPRI5),
+  // larger; a table's answer (DOP853) has simulate's.
+  const limits = {};
+  const onTable = { ...toy, body: { ...toy.body, tip_radius: 0.002 }, table: { contact: "frictionless" } };
+  for (const [f, cfg, what] of [["simulate", toy, "simulate"], ["stability", toy, "stability"], ["stability", onTable, "stability on a table"]]) {
+    const over = await thrown(f, cfg, { max_steps: 1e12 });
+    const limit = fromMessage(/^heavytop: error: --max-steps: must be at most (\d+) in the page/, over.message);
+    const just = limit > 0 ? await thrown(f, cfg, { max_steps: limit + 1 }) : {};
+    limits[what] = check(`${what}: max_steps 1e12 and the limit + 1 are refused naming --max-steps and the page's limit`,
+                         limit > 0 && just.isError && just.message === over.message, over.message) ? limit : 0;
+  }
+  const within = await thrown("simulate", toy, { t_end: 1, max_steps: limits.simulate });
+  check("simulate(toy, {max_steps: the limit}) is taken", !within.message, within.message);
+  const limit = limits.simulate;
+  if (!limit) return;
+  check("stability's limit on a pivot (DOPRI5) is larger than simulate's; on a table it is simulate's",
+        limits.stability > limit && limits["stability on a table"] === limit, JSON.stringify(limits));
+  const toml = await page.evaluate((c) => heavytopExplorer.toml(c), toy);
+  // simulate over 1e7 s: the command line's failure at --max-steps LIMIT, naming the time reached;
+  // a max_steps below the limit is the command line's too.
+  for (const [options, steps] of [[{ t_end: 1e7 }, limit], [{ t_end: 1e7, max_steps: 1000 }, 1000]]) {
+    const r = await thrown("simulate", toy, options);
+    const native = cli(toml, ["simulate", "--t-end", "1e7", "--max-steps", String(steps), "--format", "csv"]);
+    const reached = fromMessage(/before t = ([-+.\de]+) s/, r.message);
+    check(`simulate(toy, ${JSON.stringify(options)}) throws the command line's failure with --max-steps ${steps}, naming the time reached`,
+          r.isError && native.status === 1 && sameWords(r.message, native.stderr) && r.message.includes(`max_steps = ${steps} `) &&
+          reached > 0 && reached < 1e7, `${r.message || "no error"} | ${native.stderr}`);
+  }
+  // The budget is the nonlinear model's (simulate refuses --max-steps with another): a linear model
+  // over 1e7 s, asked for or the configuration's [simulate] model, is the command line's run.
+  for (const [cfg, options, args] of [[toy, { model: "linearized", t_end: 1e7, samples: 11 }, ["--model", "linearized"]],
+                                      [{ ...toy, simulate: { model: "body-fixed" } }, { t_end: 1e7, samples: 11 }, []]]) {
+    const r = await thrown("simulate", cfg, options);
+    const native = cli(await page.evaluate((c) => heavytopExplorer.toml(c), cfg), ["simulate", ...args, "--t-end", "1e7", "--samples", "11", "--format", "csv"]);
+    const d = r.message || native.status !== 0 ? [r.message || native.stderr] : compareTrajectory(r.value, parseCsv(native.stdout), 1e-9);
+    check(`simulate(${cfg.simulate ? "[simulate] model = body-fixed" : "toy"}, ${JSON.stringify(options)}): no budget, the command line's run`,
+          d.length === 0, d.slice(0, 3).join("; "));
+  }
+  // In the page: a spin of 1e7 rad/s typed in, whose 10 s of motion need more steps than the
+  // budget: the motion's panel says so in the command line's words (the answer is a proof: no run).
+  await page.evaluate((c) => heavytopExplorer.open({ config: c }, false), toy);
+  await page.select("#spin-unit", "rad/s");
+  await page.click("#spin", { clickCount: 3 });
+  await page.type("#spin", "1e7");
+  await page.waitForFunction(() => /^motion: /.test(document.getElementById("motion-info").textContent), { timeout: 60000 }).catch(() => {});
+  const motion = await page.$eval("#motion-info", (e) => e.textContent);
+  const fast = cli(await page.evaluate(() => heavytopExplorer.toml(heavytopExplorer.config())),
+                   ["simulate", "--model", "nonlinear", "--t-end", "10", "--samples", "1001", "--max-steps", String(limit), "--format", "csv"]);
+  check("a spin of 1e7 rad/s typed in: the motion's panel shows the run's failure at the page's budget, as the command line words it",
+        /^motion: /.test(motion) && fast.status === 1 && sameWords(motion.replace(/^motion: /, ""), fast.stderr), `${motion} | ${fast.stderr}`);
+
+  // The answer's run over a horizon of 1e7 s (a body not proven stable, which does not fall): it
+  // stops at the page's budget and says so, the horizon it covered, as `stability --max-steps`.
+  const takes = /^ {2}--max-steps\b/m.test(spawnSync(heavytop, ["stability", "--help"], { encoding: "utf8" }).stdout);
+  if (!check("heavytop stability takes --max-steps (the page's budget for the answer's run)", takes,
+             takes ? "" : "cli/stability_command.cpp has no --max-steps: the page cannot bound stability's run")) return;
+  const slow = { ...toy, motion: { spin: 100, theta0: 0.05 } };  // below its critical spin, it nutates to 1.45 rad
+  const slowToml = await page.evaluate((c) => heavytopExplorer.toml(c), slow);
+  const stabilityLimit = limits.stability;
+  const args = ["--horizon", "1e7", "--max-tilt", "2", "--max-steps", String(stabilityLimit)];
+  // A max_steps of the person's: the command line's answer with it (its numbers to 1e-12, 1e-6 integrated).
+  const few = await thrown("stability", slow, { horizon: 1e7, max_tilt: 2, max_steps: 10000 });
+  const fewNative = cli(slowToml, ["stability", "--horizon", "1e7", "--max-tilt", "2", "--max-steps", "10000", "--format", "json"]);
+  const fewDiff = few.message || fewNative.status !== 0 ? [few.message || fewNative.stderr] : compare(few.value, JSON.parse(fewNative.stdout), "", 1e-12, 0, []);
+  check(`stability(body, {horizon: 1e7, max_tilt: 2, max_steps: 10000}) answers as stability --max-steps 10000: the run stopped (horizon ${few.value && few.value.answer.horizon} s)`,
+        fewDiff.length === 0 && few.value.answer.horizon < 1e7 && /could be computed only to t = .*max_steps = 10000 /.test(few.value.answer.reason),
+        fewDiff.slice(0, 3).join("; ") || (few.value && few.value.answer.reason));
+  // The page's limit: the same, but the time reached after millions of steps is a sum of as many
+  // step sizes, and the page's (WebAssembly) and the command line's step controllers part at a
+  // rounding along the way (the same to the last digit after 10^4 steps, 6.5e-5 apart after 10^5,
+  // 4.4e-5 after 10^6): it is compared as the stopped run's message shows it, to 1e-4.
+  const got = await thrown("stability", slow, { horizon: 1e7, max_tilt: 2 });
+  const native = cli(slowToml, ["stability", ...args, "--format", "json"]);
+  const a = got.value && got.value.answer;
+  const want = native.status === 0 ? JSON.parse(native.stdout) : null;
+  const diff = got.message || !want ? [got.message || native.stderr]
+                                    : compare(got.value, want, "", 1e-12, 0, []).filter((d) => !d.startsWith(".answer.horizon: "));
+  const reached = want && Math.abs(a.horizon - want.answer.horizon) <= 1e-4 * want.answer.horizon;
+  check(`stability(body, {horizon: 1e7, max_tilt: 2}) stops at the page's limit and says so (horizon ${a && a.horizon} s), as stability ${args.join(" ")}`,
+        diff.length === 0 && reached && a.horizon < 1e7 && new RegExp(`could be computed only to t = .*max_steps = ${stabilityLimit} `).test(a.reason),
+        diff.slice(0, 3).join("; ") || `${a && a.reason} | ${want && want.answer.horizon}`);
+  // In the page: the horizon typed in, the answer shown is that one, in stability's words.
+  await page.evaluate((c) => heavytopExplorer.open({ config: c }, false), slow);
+  await page.click("#max_tilt", { clickCount: 3 });
+  await page.type("#max_tilt", "2");
+  await page.click("#horizon", { clickCount: 3 });
+  await page.type("#horizon", "1e7");
+  await page.waitForFunction(() => { const c = heavytopExplorer.current(); return c && c.options.horizon === 1e7; }, { timeout: 60000 }).catch(() => {});
+  const shown = await pageState(page);
+  const text = cli(slowToml, ["stability", ...args, "--format", "text"]);
+  const words = text.status === 0 ? text.stdout.split("\n\n")[0] : text.stderr;
+  const box = await page.$eval("#answer", (e) => e.textContent);
+  check("the horizon 1e7 typed in: the page shows the answer of the run that stopped, in stability's words",
+        sameWords(shown.words, words) && /could be computed only to t = /.test(box), `${box} | ${words}`);
+  await page.evaluate(() => { for (const id of ["horizon", "max_tilt"]) document.getElementById(id).value = ""; });
+}
+
+// ---- the tilt in degrees (issue 45) ---------------------------------------------------------------
+// The tilt's unit selector, as the spin's rpm: 30 typed in degrees is the answer of
+// 0.5235987755982988 rad typed in rad; the configuration stays in rad (motion.theta0), a change of
+// unit keeps the tilt's double, and a link made in degrees opens at the same configuration.
+async function checkDegrees(browser) {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on("pageerror", (err) => errors.push(String(err)));
+  page.on("console", (msg) => { if (msg.type() === "error") errors.push(msg.text()); });
+  await page.goto("file://" + path.resolve(pageFile), { waitUntil: "load" });
+  await page.waitForFunction(() => document.body.dataset.ready === "1", { timeout: 60000 });
+  const shownAfter = async (unit, text) => {
+    if (unit) await page.select("#theta0-unit", unit);
+    if (text !== undefined) {
+      await page.click("#theta0", { clickCount: 3 });
+      await page.keyboard.press("Backspace");
+      await page.type("#theta0", text);
+    }
+    await new Promise((r) => setTimeout(r, 600));
+    return page.evaluate(() => ({ field: document.getElementById("theta0").value, config: heavytopExplorer.config(),
+                                  current: heavytopExplorer.current(), answer: document.getElementById("answer").textContent }));
+  };
+  if (!check("the tilt has a unit selector (rad, degrees)", await page.$("#theta0-unit option[value=deg]") !== null)) { await page.close(); return; }
+  const start = await shownAfter();
+  const inDegrees = await shownAfter("deg");
+  check("choosing degrees shows the tilt in degrees, the configuration's tilt unchanged (rad)",
+        Number(inDegrees.field) === Number((start.config.motion.theta0 * 180 / Math.PI).toPrecision(12)) &&
+        inDegrees.config.motion.theta0 === start.config.motion.theta0, `${start.field} rad -> ${inDegrees.field} degrees, theta0 ${inDegrees.config.motion.theta0}`);
+  const thirty = await shownAfter(null, "30");
+  const rad = await shownAfter("rad", "0.5235987755982988");
+  check("30 degrees typed in is motion.theta0 = 0.5235987755982988 rad", thirty.config.motion.theta0 === 0.5235987755982988 &&
+        rad.config.motion.theta0 === 0.5235987755982988, `${thirty.config.motion.theta0}, ${rad.config.motion.theta0}`);
+  const diff = thirty.current && rad.current ? compare(thirty.current.stability, rad.current.stability, "", 0, 0, []) : ["no answer"];
+  check("30 degrees gives the answer of 0.5235987755982988 rad (its JSON and words, exactly)",
+        diff.length === 0 && thirty.current.words === rad.current.words && thirty.answer === rad.answer && compare(thirty.current.stability, start.current.stability, "", 1e-12, 0, []).length > 0,
+        diff.slice(0, 3).join("; ") || thirty.answer.slice(0, 100));
+  // Back in degrees: a link of the page's configuration opens at the same configuration.
+  await shownAfter("deg");
+  const again = await page.evaluate(() => {
+    const c = heavytopExplorer.config();
+    heavytopExplorer.open("#config=" + encodeURIComponent(JSON.stringify(c)));
+    return { before: c, after: heavytopExplorer.config(), field: document.getElementById("theta0").value };
+  });
+  check("in degrees, a link of the page's configuration opens at the same configuration", compare(again.after, again.before, "", 0, 0, []).length === 0 &&
+        again.field === "30", `${again.field}: ${JSON.stringify(again.after.motion)}`);
+  await page.screenshot({ path: path.join(work, "explore-degrees.png"), fullPage: false });
+  check("the tilt in degrees: no page error", errors.length === 0, errors.join(" | "));
+  await page.close();
 }
 
 // ---- hostile input (issue 46) -------------------------------------------------------------------
@@ -693,6 +852,8 @@ async function checkHostile(browser, page) {
   check("no request leaves the page's folder", foreign.length === 0, foreign.join(" "));
   check("no console error", errors.length === 0, errors.join(" | "));
   await checkHostile(browser, page);
+  await checkLongRuns(browser, page);
+  await checkDegrees(browser);
   await checkEveryOption(browser, page);
   await checkTable(browser);
   if (reportDir) await checkReport(browser);

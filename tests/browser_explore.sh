@@ -52,5 +52,5 @@ check "a report without the page: no link to it" bash -c "! grep -q explore.html
 NODE_PATH="$NODE_MODULES" "$NODE" "$here/browser_explore.cjs" "$CHROMIUM" "$H" page/explore.html "$PWD/cli" "$(realpath "$here/../examples")" "$PWD/report"
 check "in the browser" test $? -eq 0
 cp cli/benchmark.json "$ARTEFACTS/explore-benchmark.json" 2>/dev/null
-for f in explore explore-view explore-parts explore-table report-explorer; do cp cli/$f.png "$ARTEFACTS/$f.png" 2>/dev/null; done
+for f in explore explore-view explore-parts explore-table explore-degrees report-explorer; do cp cli/$f.png "$ARTEFACTS/$f.png" 2>/dev/null; done
 finish

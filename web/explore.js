@@ -268,6 +268,22 @@
   // The answer's options (stability's --horizon, --max-tilt, --lifetime-horizon).
   const answerKeys = ["horizon", "max_tilt", "lifetime_horizon"];
   const rpm = 60 / (2 * Math.PI);
+  // The tilt θ₀ in rad or degrees (the configuration's motion.theta0 stays in rad). A value shown
+  // in degrees keeps its radians while its text is unchanged: a unit's change or a link shown in
+  // degrees reads back the same double, not one rounded through 12 digits of degrees.
+  const degree = Math.PI / 180;
+  let tiltShown = null;  // {text, rad}: the degrees last shown and their radians
+  function showTilt(value) {
+    const inDegrees = $("theta0-unit").value === "deg" && Number.isFinite(value);
+    $("theta0").value = inDegrees ? Number((value / degree).toPrecision(12)) : shown(value);
+    tiltShown = inDegrees ? { text: $("theta0").value, rad: value } : null;
+  }
+  // rad, from the field as shown in `unit` (the selector's, or the one it had before a change).
+  function readTilt(unit = $("theta0-unit").value) {
+    if (tiltShown && $("theta0").value === tiltShown.text) return tiltShown.rad;
+    const v = num("theta0");
+    return v !== undefined && unit === "deg" ? v * degree : v;
+  }
   const section = (c, name) => (isObject(c[name]) ? c[name] : {});
   const shown = (v) => (v === undefined || v === null ? "" : v);
   // The inputs at a configuration (never throws: a value the form cannot hold is shown as text
@@ -284,7 +300,8 @@
     for (const k of shapeKeys) $(k).value = shown(body[k]);
     const spin = motion.spin ?? (motion.spin_rpm !== undefined ? motion.spin_rpm / rpm : 0);
     $("spin").value = $("spin-unit").value === "rpm" ? spin * rpm : spin;
-    for (const k of motionKeys) $(k).value = shown(motion[k] ?? 0);
+    for (const k of motionKeys) if (k !== "theta0") $(k).value = shown(motion[k] ?? 0);
+    showTilt(motion.theta0 ?? 0);
     $("driven").checked = motion.driven === true;
     for (const k of dampingKeys) $(k).value = shown(damping[k] ?? 0);
     $("contact").value = ["frictionless", "rolling", "sliding"].includes(table.contact) ? table.contact : "pivot";
@@ -343,7 +360,7 @@
     const spin = num("spin");
     delete c.motion.spin; delete c.motion.spin_rpm;
     if ($("spin-unit").value === "rpm") c.motion.spin_rpm = spin; else c.motion.spin = spin;
-    for (const k of motionKeys) set(c.motion, k, num(k));
+    for (const k of motionKeys) set(c.motion, k, k === "theta0" ? readTilt() : num(k));
     set(c.motion, "driven", $("driven").checked ? true : undefined);
     c.damping = {};
     for (const k of dampingKeys) if (num(k)) c.damping[k] = num(k);
@@ -686,6 +703,10 @@
     $("spin-unit").addEventListener("change", () => {
       const v = Number($("spin").value);
       $("spin").value = Number(($("spin-unit").value === "rpm" ? v * rpm : v / rpm).toPrecision(12));
+      schedule(false);
+    });
+    $("theta0-unit").addEventListener("change", () => {
+      showTilt(readTilt($("theta0-unit").value === "deg" ? "rad" : "deg"));
       schedule(false);
     });
     for (const w of ["x", "y"]) $(`map-${w}`).addEventListener("change", () => { setupMap($(`map-${w}`).value, w); drawMap(); });

@@ -85,6 +85,13 @@ std::string slurp(const char* path) {
 // (the CSV's text, then its rows in JavaScript); the command line's CSV streams any number.
 constexpr long long kMaxPageSamples = 2'000'000;
 
+// The most integration steps of a page's run (--max-steps, given to the commands that take it; the
+// command line's 10^8 are minutes here, the page frozen): about 3 s of the run's slowest step, in
+// Node on the built module (web/step_rate.cjs, web/README.md): a damped body's Taylor step 2.85 us,
+// DOP853 on a table 2.42 us; DOPRI5, the answer's and lifetime's run on a pivot, 0.23 us.
+constexpr long long kPageMaxSteps = 1'000'000;         // simulate, the 3D view, an answer on a table
+constexpr long long kPageMaxDopri5Steps = 5'000'000;  // stability and lifetime on a pivot
+
 // The flags the page sets itself (ARGS may not): the configuration's file, the output and its format;
 // --help would print the help and succeed with no output.
 bool reserved_flag(const std::string& word) {
@@ -102,8 +109,9 @@ Result refused(const std::string& key, const std::string& rule) {
 }
 
 // The page's options (ARGS: "--flag", "value" pairs) checked before the command runs: no flag the
-// page sets itself, and --samples within kMaxPageSamples. Unknown flags are CLI11's to refuse.
-std::optional<Result> refuse_page_args(const char* command, const std::vector<std::string>& args) {
+// page sets itself, --samples within kMaxPageSamples, --max-steps within MAX_STEPS (the command's
+// limit; 0: none). Unknown flags are CLI11's to refuse.
+std::optional<Result> refuse_page_args(const char* command, const std::vector<std::string>& args, long long max_steps) {
   for (std::size_t i = 0; i < args.size(); i += 2) {
     const std::string& flag = args[i];
     if (reserved_flag(flag))
@@ -118,26 +126,43 @@ std::optional<Result> refuse_page_args(const char* command, const std::vector<st
                                                 "(the command line's --format csv streams any number)",
                                                 kMaxPageSamples));
     }
+    if (flag == "--max-steps" && max_steps > 0 && i + 1 < args.size()) {
+      char* end = nullptr;
+      const double n = std::strtod(args[i + 1].c_str(), &end);
+      if (end != args[i + 1].c_str() && *end == '\0' && n > static_cast<double>(max_steps))
+        return refused("--max-steps", fmt::format("must be at most {} in the page, which a longer run would hold still "
+                                                  "(the command line's default is 10^8 steps, with a progress bar)",
+                                                  max_steps));
+    }
   }
   return std::nullopt;
 }
 
-// `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it.
-Result run(const char* command, Make make, const std::string& config, std::vector<std::string> args) {
+bool has_flag(const std::vector<std::string>& args, const char* flag) {
+  for (std::size_t i = 0; i < args.size(); i += 2)
+    if (args[i] == flag) return true;
+  return false;
+}
+
+// `heavytop COMMAND --config config.toml ARGS... --output heavytop-output`, as cli/app.cpp runs it;
+// with `--max-steps MAX_STEPS` when it is > 0, the command takes it and ARGS do not give it.
+Result run(const char* command, Make make, const std::string& config, std::vector<std::string> args, long long max_steps = 0) {
   {
     std::ofstream out(kConfig, std::ios::binary | std::ios::trunc);
     out << config;
   }
   std::ofstream(kOutput, std::ios::binary | std::ios::trunc).close();
-  std::vector<std::string> words = {"heavytop", command, "--config", kConfig};
-  words.insert(words.end(), args.begin(), args.end());
-  words.insert(words.end(), {"--output", kOutput});
-  std::vector<char*> argv;
-  for (std::string& w : words) argv.push_back(w.data());
-
   CLI::App app{"heavytop"};
   app.require_subcommand(0, 1);
   cli::Action action = make(app);
+
+  std::vector<std::string> words = {"heavytop", command, "--config", kConfig};
+  words.insert(words.end(), args.begin(), args.end());
+  if (max_steps > 0 && app.get_subcommand(command)->get_option_no_throw("--max-steps") && !has_flag(args, "--max-steps"))
+    words.insert(words.end(), {"--max-steps", std::to_string(max_steps)});
+  words.insert(words.end(), {"--output", kOutput});
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
   std::ostringstream err;
   std::streambuf* old = std::cerr.rdbuf(err.rdbuf());
   Result r;
@@ -239,13 +264,16 @@ Result view_of(const std::string& config, double t_end, int samples) {
         parts.push_back(p.mesh ? report::DrawnPart{.label = p.label, .solid = std::nullopt, .mesh_file = p.file, .scale = p.scale}
                                : report::DrawnPart{.label = p.label, .solid = p.solid, .mesh_file = {}, .scale = 1.0});
       if (const Table& table = inputs->table(); table.on_table()) {
+        Tolerances tolerances;
+        tolerances.max_steps = kPageMaxSteps;
         const TableRun run = simulate_on_table(inputs->body(), table, inputs->state(),
-                                               SampleGrid{t_end, static_cast<std::size_t>(samples)});
+                                               SampleGrid{t_end, static_cast<std::size_t>(samples)}, tolerances);
         cli::write_output(inputs->output(), table_view(inputs->body(), table, run.trajectory, parts));
         return;
       }
       SimulateOptions options;
       options.integrator = Integrator::Auto;
+      options.adaptive.max_steps = options.splitting.max_steps = kPageMaxSteps;
       const Simulation run = simulate(Model::Nonlinear, inputs->body(), inputs->state(),
                                       sample_times(t_end, static_cast<std::size_t>(samples)), options);
       if (!run.summary.ok()) throw cli::Failure(run.summary.message);
@@ -256,6 +284,31 @@ Result view_of(const std::string& config, double t_end, int samples) {
 }
 
 #if defined(__EMSCRIPTEN__)
+// A setting as the command reads it: ARGS' last FLAG, else the configuration's KEY (nullopt also
+// for a configuration that does not parse: the command refuses it before any run).
+std::optional<std::string> setting(const std::string& config, const std::vector<std::string>& args, const char* flag,
+                                   const char* key) {
+  std::optional<std::string> value;
+  for (std::size_t i = 0; i + 1 < args.size(); i += 2)
+    if (args[i] == flag) value = args[i + 1];
+  if (!value) try {
+      value = io::parse_configuration(config, kConfig, "--config").string(key);
+    } catch (const std::exception&) {
+    }
+  return value;
+}
+
+// COMMAND's step limit in the page, by the integrator of its run: simulate's nonlinear model and a
+// table's answer kPageMaxSteps, the DOPRI5 runs of stability and lifetime on a pivot
+// kPageMaxDopri5Steps; 0 for simulate's other models, which refuse --max-steps.
+long long page_max_steps(const std::string& command, const std::string& config, const std::vector<std::string>& args) {
+  if (command == "simulate")
+    return setting(config, args, "--model", "simulate.model").value_or("nonlinear") == "nonlinear" ? kPageMaxSteps : 0;
+  if (command == "stability" && setting(config, args, "--contact", "table.contact").value_or("pivot") != "pivot")
+    return kPageMaxSteps;
+  return kPageMaxDopri5Steps;
+}
+
 std::string version() { return std::string("heavytop ") + std::string(kVersion); }
 
 // The output as a view of its bytes (UTF-8), alive until the next call: the page decodes it
@@ -273,14 +326,15 @@ emscripten::val to_js(const Result& r) {
 // args: the answer's options the page passes (--horizon, --max-tilt, --lifetime-horizon), as text;
 // format: "json" (the object) or "text" (the words, for people).
 emscripten::val stability(const std::string& config, const std::vector<std::string>& args, const std::string& format) {
-  if (auto no = refuse_page_args("stability", args)) return to_js(*no);
+  const long long max_steps = page_max_steps("stability", config, args);
+  if (auto no = refuse_page_args("stability", args, max_steps)) return to_js(*no);
   std::vector<std::string> all = args;
   all.insert(all.end(), {"--format", format});
-  return to_js(run("stability", cli::add_stability_command, config, all));
+  return to_js(run("stability", cli::add_stability_command, config, all, max_steps));
 }
 
 emscripten::val js_lifetime(const std::string& config) {
-  return to_js(run("lifetime", cli::add_lifetime_command, config, {"--format", "json"}));
+  return to_js(run("lifetime", cli::add_lifetime_command, config, {"--format", "json"}, page_max_steps("lifetime", config, {})));
 }
 
 // `heavytop body --format json`: the body's mass properties (of its parts, meshes read from the
@@ -293,10 +347,11 @@ emscripten::val js_view(const std::string& config, double t_end, int samples) { 
 
 // args: the simulate flags the page passes (--model, --t-end, --samples), as text.
 emscripten::val js_simulate(const std::string& config, const std::vector<std::string>& args) {
-  if (auto no = refuse_page_args("simulate", args)) return to_js(*no);
+  const long long max_steps = page_max_steps("simulate", config, args);
+  if (auto no = refuse_page_args("simulate", args, max_steps)) return to_js(*no);
   std::vector<std::string> all = args;
   all.insert(all.end(), {"--format", "csv"});
-  return to_js(run("simulate", cli::add_simulate_command, config, all));
+  return to_js(run("simulate", cli::add_simulate_command, config, all, max_steps));
 }
 
 emscripten::val js_stability_map(const std::string& config, const std::string& key_x, double x0, double x1,
