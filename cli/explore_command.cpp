@@ -26,7 +26,7 @@ namespace {
 
 // The page's start: the configuration's sections as the page's window.heavytop takes them
 // ({body, motion, damping, table}) and the answer's options ({horizon, max_tilt,
-// lifetime_horizon}: stability's flags), as JSON that a <script> holds.
+// lifetime_horizon, max_steps}: stability's flags), as JSON that a <script> holds.
 std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
   using nlohmann::json;
   const Body& b = inputs.body();
@@ -52,6 +52,7 @@ std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
   }
   json stability = {{"horizon", o.horizon}, {"max_tilt", o.max_tilt}};
   if (o.damped_horizon) stability["lifetime_horizon"] = *o.damped_horizon;
+  if (o.integrator.max_steps != Tolerances{}.max_steps) stability["max_steps"] = o.integrator.max_steps;
   std::string text = json{{"config", config}, {"stability", stability}}.dump();
   // Inside a <script>: no "</" (a string of the file could hold "</script>").
   for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3) text.replace(at, 2, "<\\/");
@@ -62,7 +63,7 @@ std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
 // its radii, the motion with its motor, the damping): a table or answer options of its own.
 bool beyond_initial(const Inputs& inputs, const AnswerOptions& o) {
   return inputs.table().on_table() || o.horizon != AnswerOptions{}.horizon || o.max_tilt != AnswerOptions{}.max_tilt ||
-         o.damped_horizon.has_value();
+         o.damped_horizon.has_value() || o.integrator.max_steps != Tolerances{}.max_steps;
 }
 
 }  // namespace
@@ -85,6 +86,10 @@ Action add_explore_command(CLI::App& app) {
           ->default_str("1");
   auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
                                                       "degrees, the same (instead of --max-tilt)");
+  cmd->add_option("--max-steps", o->integrator.max_steps,
+                  "the most integration steps of the page's answer run (stability's --max-steps; the page's own "
+                  "limit bounds it)")
+      ->check(positive_count());
   return [inputs, o, max_tilt_deg] {
     inputs->resolve();
     max_tilt_deg->apply(o->max_tilt);

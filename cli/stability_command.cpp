@@ -4,6 +4,8 @@
 #include <memory>
 #include <optional>
 
+#include <fmt/format.h>
+
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/io/formats.hpp"
@@ -35,6 +37,11 @@ Action add_stability_command(CLI::App& app) {
                        ->default_str("1");
   auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
                                                       "degrees, the same (instead of --max-tilt)");
+  cmd->add_option("--max-steps", options->integrator.max_steps,
+                  "nonlinear: the most integration steps of the answer's run (the wander's at most 2000000); a run "
+                  "that needs more answers the time it reached")
+      ->check(positive_count())
+      ->default_str(fmt::format("{}", options->integrator.max_steps));
   auto brief = std::make_shared<bool>(false);
   cmd->add_flag("--brief", *brief, "text: the answer only (the text's first paragraph, for a class), no details");
   return [inputs, options, lifetime_horizon, max_tilt_deg, brief] {

@@ -73,7 +73,7 @@
       return f(args);
     } finally { args.delete(); }
   }
-  // options: the answer's {horizon, max_tilt, lifetime_horizon} (stability's flags).
+  // options: the answer's {horizon, max_tilt, lifetime_horizon, max_steps} (stability's flags).
   function stability(config, options = {}) {
     const text = toml(config);
     return JSON.parse(withArgs(options, (args) => check(core.stability(text, args, "json"))));
@@ -265,8 +265,8 @@
   const dampingKeys = ["transverse", "axial", "friction"];
   const motionKeys = ["theta0", "phi0", "theta_rate0", "phi_rate0"];
   const shapeKeys = ["tip_radius", "rim_radius"];  // [body]: what touches the table
-  // The answer's options (stability's --horizon, --max-tilt, --lifetime-horizon).
-  const answerKeys = ["horizon", "max_tilt", "lifetime_horizon"];
+  // The answer's options (stability's --horizon, --max-tilt, --lifetime-horizon, --max-steps).
+  const answerKeys = ["horizon", "max_tilt", "lifetime_horizon", "max_steps"];
   const rpm = 60 / (2 * Math.PI);
   // The tilt θ₀ in rad or degrees (the configuration's motion.theta0 stays in rad). A value shown
   // in degrees keeps its radians while its text is unchanged: a unit's change or a link shown in

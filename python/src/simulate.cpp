@@ -69,7 +69,7 @@ py::tuple simulate(const Body& body, const std::string& model_name, double spin,
                               [](std::string_view key, std::string_view value) {
                                 return fmt::format("{}=\"{}\"", key, value);
                               },
-                              "auto, taylor, dop853, dopri5 (adaptive) or splitting"});
+                              "auto, taylor, dop853, dopri5 (adaptive), splitting or rosenbrock4"});
   }
   const std::optional<Model> model = resolved.model;
   if (on_table)

@@ -68,9 +68,9 @@ std::pair<py::object, py::object> run_objects(const Body& body, const Table& tab
 /// (columns, summary, table) of `simulate --model nonlinear --format json` on `table`: the CSV's
 /// columns as NumPy arrays, the JSON's "summary" and "table".
 py::tuple simulate_on_table_columns(const Body& body, const Table& table, const InitialState& state, double t_end,
-                                    std::size_t samples, const Tolerances& tolerances) {
+                                    std::size_t samples, const Tolerances& tolerances, Integrator integrator) {
   TableRun run = without_gil([&] {
-    return simulate_on_table(body, table, state, SampleGrid{t_end, samples}, tolerances, poll_signals());
+    return simulate_on_table(body, table, state, SampleGrid{t_end, samples}, tolerances, poll_signals(), integrator);
   });
   auto [settings, summary] = run_objects(body, table, state, run.summary);
   Trajectory& tr = run.trajectory;
@@ -91,11 +91,10 @@ py::tuple simulate_table(const Body& body, const Table& table, const InitialStat
     throw InvalidInput("table.contact", fmt::format("model=\"{}\" is the pivot's (SPEC section 16): on a table (contact "
                                                     "= \"{}\") use model=\"nonlinear\"",
                                                     model, name(table.contact)));
-  if (integrator && *integrator != "auto" && *integrator != "dop853")
-    throw InvalidInput("integrator", fmt::format("on a table (contact = \"{}\") the body is integrated by dop853 "
-                                                 "(or auto, which is it there)",
-                                                 name(table.contact)));
-  return simulate_on_table_columns(body, table, state, t_end, samples, tolerances);
+  // The name is resolve()'s, checked before.
+  const Integrator chosen = integrator_from_name(integrator.value_or("auto")).value_or(Integrator::Auto);
+  if (auto why = integrator_refusal(chosen, body, true, false)) throw InvalidInput("integrator", *why);
+  return simulate_on_table_columns(body, table, state, t_end, samples, tolerances, chosen);
 }
 
 py::tuple stability_on_table(const Body& body, const Table& table, const InitialState& state,

@@ -122,7 +122,7 @@ def test_integrator_options_are_refused_as_the_cli(kwargs, cli_args):
 
 
 @pytest.mark.parametrize("kwargs,message", [
-    (dict(integrator="leapfrog"), "integrator: must be auto, taylor, dop853, dopri5 (adaptive) or splitting"),
+    (dict(integrator="leapfrog"), "integrator: must be auto, taylor, dop853, dopri5 (adaptive), splitting or rosenbrock4"),
     (dict(model="first-order", integrator="adaptive"), 'integrator: applies to model="nonlinear" only'),
     (dict(model="linearized", step=1e-3), 'step: applies to model="nonlinear" only'),
     (dict(model="lagrange-exact", max_steps=10), 'max_steps: applies to model="nonlinear" only'),
