@@ -789,7 +789,7 @@ class SimulationSummary(JsonResult):
 @dataclass(frozen=True, eq=False)
 class TableSummary(JsonResult):
     """What simulate() did on a table: the "summary" of `heavytop simulate --format json` with
-    [table] (``to_dict()``), DOP853's work and the largest relative drifts of the quantities the
+    [table] (``to_dict()``), the integrator's work and the largest relative drifts of the quantities the
     contact keeps (docs/table.md)."""
 
     end: str
@@ -803,6 +803,9 @@ class TableSummary(JsonResult):
     """Evaluations of the equations of motion."""
     switches: int
     """Coulomb's law: the contact's switches between sticking and slipping (0 otherwise)."""
+    integrator: str
+    """The one that ran: "dop853", or "rosenbrock4" (implicit: viscous sliding made stiff by a
+    small slip_speed; docs/table.md)."""
     max_relative_energy_drift: float
     """The largest |E(t) - E(0)| over the steps, relative (the energy falls while it slides)."""
     max_relative_jellett_drift: float
@@ -824,7 +827,8 @@ class TableSummary(JsonResult):
     @property
     def report(self) -> str:
         """One line for people: how it ended and the work."""
-        return (f"on the table, Dormand-Prince 8(5,3): {self.end} at t = {self.end_time:.9g} s, {self.steps} steps, "
+        method = "Rosenbrock 4" if self.integrator == "rosenbrock4" else "Dormand-Prince 8(5,3)"
+        return (f"on the table, {method}: {self.end} at t = {self.end_time:.9g} s, {self.steps} steps, "
                 f"{self.rhs_evaluations} evaluations" + (f", {self.switches} switches" if self.switches else ""))
 
     def __str__(self) -> str:

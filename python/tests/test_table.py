@@ -164,6 +164,22 @@ def test_simulate_on_a_table_is_the_cli_s_json():
     assert m.x[0] == 0.0 and m.height[0] == pytest.approx(0.015)
 
 
+def test_stiff_sliding_takes_the_implicit_integrator_as_the_cli_does():
+    # At slip_speed 1e-6 m/s the viscous law is stiff: integrator="rosenbrock4" (and auto at this
+    # tolerance) is the command line's Rosenbrock 4, number for number; a pivot refuses it.
+    args = ("--slip-speed", "1e-6", "--rtol", "1e-9", "--atol", "1e-9", "--t-end", "0.1", "--samples", "3")
+    expected = cli_json("simulate", "--config", TIPPE, *args)
+    table = heavytop.Table("sliding", friction=0.3, friction_law="viscous", slip_speed=1e-6)
+    for integrator in ("rosenbrock4", "auto"):
+        m = heavytop.simulate(TIPPE_BODY, table=table, **TIPPE_MOTION, t_end=0.1, samples=3, rtol=1e-9, atol=1e-9,
+                              integrator=integrator)
+        assert m.summary.integrator == expected["summary"]["integrator"] == "rosenbrock4"
+        assert np.array_equal(m["tilt"], np.array(expected["tilt"]))
+        assert "Rosenbrock 4" in m.summary.report
+    with pytest.raises(heavytop.InvalidInput, match="^integrator: rosenbrock4 integrates a body on a table"):
+        heavytop.simulate(TIPPE_BODY, **TIPPE_MOTION, t_end=0.1, integrator="rosenbrock4")
+
+
 def test_simulate_on_a_table_is_the_cli_s_csv():
     text = run_cli("simulate", "--config", TIPPE, "--t-end", "0.5", "--samples", "6").stdout
     header = text.splitlines()[0].split(",")
