@@ -70,6 +70,9 @@ check "friction without sliding" refuse table.friction simulate --contact rollin
 check "linear model on a table" refuse table.contact simulate --contact rolling --model first-order
 check "taylor on a table" refuse --integrator simulate --contact rolling --integrator taylor
 check "rosenbrock4 on a pivot" refuse --integrator simulate --integrator rosenbrock4
+# stability --max-steps: a run that stops early says how far it got and decides nothing.
+"$H" stability --config "$examples/tippe-top.toml" --max-steps 2000 > stopped.txt
+check "a stopped run: exit 0, Not decided" grep -q "^Not decided\. .*could be computed only to t = " stopped.txt
 # A small slip speed makes the viscous law stiff: auto takes the implicit Rosenbrock 4 there (at
 # a tolerance where it is the faster), the two methods agree, and the JSON says which ran.
 "$H" simulate --config "$examples/tippe-top.toml" --slip-speed 1e-6 --rtol 1e-9 --atol 1e-9 --t-end 0.2 --samples 3 --format json > stiff-auto.json

@@ -534,6 +534,22 @@ TEST(TableRolling, ACoinRollsSteadilyInACircleAtItsClosedForm) {
   }
 }
 
+// A run that cannot reach its horizon (max_steps) answers what it covered, as the pivot's does:
+// nothing claimed, the horizon the time it reached.
+TEST(TableAnswer, ARunThatStopsEarlyClaimsNothing) {
+  AnswerOptions options;
+  options.horizon = 8.0;
+  options.integrator.max_steps = 200;
+  const TableAnswer a =
+      analyse_top_on_table(tippe_top(), table_of(Contact::Sliding, 0.3), start(180.0, 0.1), options).answer;
+  EXPECT_EQ(a.verdict, AnswerVerdict::StaysUpForHorizon);
+  EXPECT_FALSE(a.proven);
+  EXPECT_NE(a.stopped.find("max_steps = 200"), std::string::npos) << a.stopped;
+  EXPECT_GT(a.horizon, 0.0);
+  EXPECT_LT(a.horizon, 1.0);  // 200 steps of a 180 rad/s spin: well under a second
+  EXPECT_FALSE(a.upright_at || a.turns_over_at || a.falls_at || a.leaves_at);
+}
+
 // ---- stiff viscous sliding ----------------------------------------------------------------------
 
 Table viscous(double slip_speed) {

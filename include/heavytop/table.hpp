@@ -192,6 +192,10 @@ struct TableAnswer {
   double track = 0.0;           ///< m, the largest distance of P from where it started
   /// rad/s, the upright state's critical spin on this table (TableStability), nullopt if none.
   std::optional<double> min_spin;
+  /// Why the run stopped before the horizon (its integrator's RunFailure: max_steps, a step too
+  /// small), empty if it did not; horizon is then the time it reached, and the verdict, unless an
+  /// event came first, StaysUpForHorizon with nothing claimed ("Not decided.").
+  std::string stopped;
   /// The upright state is asymptotically stable at the run's final spin (with upright_at: the
   /// top has risen to a state that attracts its neighbourhood; Lyapunov's first method).
   bool upright_attracts = false;

@@ -171,6 +171,7 @@ std::string table_answer_headline(const TableAnswer& a) {
     case AnswerVerdict::StaysUp: return fmt::format("Rises to vertical in {} and sleeps.", time_words(*a.upright_at));
     case AnswerVerdict::StaysUpForHorizon: break;
   }
+  if (!a.stopped.empty()) return "Not decided.";
   return "Stays up for the horizon.";
 }
 
@@ -204,6 +205,10 @@ std::string table_answer_reason(const TableAnswer& a, const Table& table) {
                          a.upright_attracts ? "is asymptotically stable" : "is not asymptotically stable");
     case AnswerVerdict::StaysUpForHorizon: break;
   }
+  if (!a.stopped.empty())
+    return fmt::format("{}, the motion of this top could be computed only to t = {}, not far enough to say what it "
+                       "does (largest tilt {} until then; {}).",
+                       start, time_words(a.horizon), angle_words(a.max_tilt), a.stopped);
   return fmt::format("{}, this top did not fall, turn over or leave the table in the {} computed (largest tilt {}; "
                      "not proven beyond it).",
                      start, time_words(a.horizon), angle_words(a.max_tilt));

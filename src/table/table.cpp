@@ -692,12 +692,17 @@ TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const I
   a.final_spin = initial.spin;
   AnswerWatch watch(integration.parameters(), a, a.start_tilt);
   TableSummary summary;
-  integration.run(summary, [&](const detail::TableIntegration::StepView& view) { return watch.step(view); });
+  try {
+    integration.run(summary, [&](const detail::TableIntegration::StepView& view) { return watch.step(view); });
+  } catch (const RunFailure& failure) {  // the answer says how far it got, as the pivot's does
+    a.stopped = failure.what();
+    a.horizon = failure.reached();
+  }
   if (summary.end == TableSummary::End::LeftTable) {
     a.leaves_at = summary.end_time;
     a.end_time = summary.end_time;
   }
-  if (!a.falls_at && !a.leaves_at) a.upright_at = watch.sleeping_since();
+  if (!a.falls_at && !a.leaves_at && a.stopped.empty()) a.upright_at = watch.sleeping_since();
   a.ends_upside_down = a.turns_over_at && std::abs(a.final_tilt - 3.141592653589793) < kUpsideDownWithin;
   if (a.upright_at) {
     const auto upright = table_stability(body, table, a.final_spin).upright;
