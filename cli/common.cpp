@@ -103,6 +103,35 @@ DegreesOption::DegreesOption(CLI::App& command, CLI::Option* rad, std::string fi
                 ->group(rad->get_group());
 }
 
+AnswerFlags::AnswerFlags(CLI::App& command, AnswerOptions& options) : options_(options) {
+  command
+      .add_option("--horizon", options.horizon,
+                  "s, how long the nonlinear body is followed when the Lyapunov verdict does not prove it "
+                  "stable (the answer's fall, the wander for A != B); a damped body is followed over the "
+                  "lifetime's horizon (--lifetime-horizon)")
+      ->default_str("100");
+  command.add_option("--lifetime-horizon", lifetime_horizon_,
+                     "s, a damped body's run (default: lifetime's, 10 times the time to the critical spin)");
+  auto* max_tilt = command
+                       .add_option("--max-tilt", options.max_tilt,
+                                   "rad, the tilt from the upward vertical past which the top has fallen")
+                       ->default_str("1");
+  max_tilt_deg_ = std::make_unique<DegreesOption>(command, max_tilt, "max_tilt", "--max-tilt-deg",
+                                                  "degrees, the same (instead of --max-tilt)");
+  command
+      .add_option("--max-steps", options.integrator.max_steps,
+                  "nonlinear: the most integration steps of the answer's run (the wander's at most 2000000); a run "
+                  "that needs more answers the time it reached")
+      ->check(positive_count())
+      ->default_str(fmt::format("{}", options.integrator.max_steps));
+}
+
+void AnswerFlags::apply() const {
+  max_tilt_deg_->apply(options_.max_tilt);
+  options_.damped_horizon = lifetime_horizon_;
+  validate(options_);  // before the body's analyses: a bad option costs nothing
+}
+
 void DegreesOption::apply(double& target) const {
   if (!given()) return;
   if (rad_->count())

@@ -6,12 +6,14 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "heavytop/answer.hpp"
 #include "heavytop/body.hpp"
 #include "heavytop/io/body_parts.hpp"
 #include "heavytop/io/config.hpp"
@@ -76,6 +78,21 @@ class DegreesOption {
   CLI::Option* option_ = nullptr;
   std::string field_;
   double degrees_ = 0.0;
+};
+
+/// stability's answer options, one set of flags for `stability` and `explore` (whose page answers
+/// as stability does): --horizon, --lifetime-horizon, --max-tilt, --max-tilt-deg, --max-steps
+/// into `options` (which must outlive the command).
+class AnswerFlags {
+ public:
+  AnswerFlags(CLI::App& command, AnswerOptions& options);
+  /// After parsing: the degrees and the lifetime's horizon into the options, then validate(options).
+  void apply() const;
+
+ private:
+  AnswerOptions& options_;
+  std::optional<double> lifetime_horizon_;
+  std::unique_ptr<DegreesOption> max_tilt_deg_;
 };
 
 /// Which of the configuration's sections a command uses: the body always; the motion (--spin,

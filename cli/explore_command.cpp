@@ -77,25 +77,12 @@ Action add_explore_command(CLI::App& app) {
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"html"}, uses);
   auto o = std::make_shared<AnswerOptions>();
   // stability's answer options, which the page's answer uses (as `heavytop stability` does).
-  cmd->add_option("--horizon", o->horizon, "s, how long the page's answer follows the nonlinear body (stability's --horizon)")
-      ->default_str("100");
-  cmd->add_option("--lifetime-horizon", o->damped_horizon,
-                  "s, a damped body's run in the page's answer (stability's --lifetime-horizon)");
-  auto* max_tilt =
-      cmd->add_option("--max-tilt", o->max_tilt, "rad, the tilt past which the page's answer says it fell (stability's --max-tilt)")
-          ->default_str("1");
-  auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
-                                                      "degrees, the same (instead of --max-tilt)");
-  cmd->add_option("--max-steps", o->integrator.max_steps,
-                  "the most integration steps of the page's answer run (stability's --max-steps; the page's own "
-                  "limit bounds it)")
-      ->check(positive_count());
-  return [inputs, o, max_tilt_deg] {
+  auto answer_flags = std::make_shared<AnswerFlags>(*cmd, *o);
+  return [inputs, o, answer_flags] {
     inputs->resolve();
-    max_tilt_deg->apply(o->max_tilt);
+    answer_flags->apply();  // stability's checks, under stability's flags
     if (inputs->output().empty())
       throw InvalidInput("--output", "give the page's file, e.g. --output explore.html (or - for stdout)");
-    validate(*o);  // stability's checks, under stability's flags
     auto page = report::explorer_page(inputs->body(), inputs->state());
     if (!page) throw InvalidInput("explore", io::kExplorerPageMissing);
     const std::string mark = "/*HEAVYTOP_CONFIG*/null";

@@ -24,35 +24,16 @@ Action add_stability_command(CLI::App& app) {
   uses.table = true;
   auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"}, uses);
   auto options = std::make_shared<AnswerOptions>();
-  auto lifetime_horizon = std::make_shared<std::optional<double>>();
-  cmd->add_option("--horizon", options->horizon,
-                  "s, how long the nonlinear body is followed when the Lyapunov verdict does not prove it "
-                  "stable (the answer's fall, the wander for A != B); a damped body is followed over the "
-                  "lifetime's horizon (--lifetime-horizon)")
-      ->default_str("100");
-  cmd->add_option("--lifetime-horizon", *lifetime_horizon,
-                  "s, a damped body's run (default: lifetime's, 10 times the time to the critical spin)");
-  auto* max_tilt = cmd->add_option("--max-tilt", options->max_tilt, "rad, the tilt from the upward vertical past "
-                                                                    "which the top has fallen")
-                       ->default_str("1");
-  auto max_tilt_deg = std::make_shared<DegreesOption>(*cmd, max_tilt, "max_tilt", "--max-tilt-deg",
-                                                      "degrees, the same (instead of --max-tilt)");
-  cmd->add_option("--max-steps", options->integrator.max_steps,
-                  "nonlinear: the most integration steps of the answer's run (the wander's at most 2000000); a run "
-                  "that needs more answers the time it reached")
-      ->check(positive_count())
-      ->default_str(fmt::format("{}", options->integrator.max_steps));
+  auto answer_flags = std::make_shared<AnswerFlags>(*cmd, *options);
   auto brief = std::make_shared<bool>(false);
   cmd->add_flag("--brief", *brief, "text: the answer only (the text's first paragraph, for a class), no details");
-  return [inputs, options, lifetime_horizon, max_tilt_deg, brief] {
+  return [inputs, options, answer_flags, brief] {
     inputs->resolve();
     // The JSON holds the answer as "answer" beside the details; a trimmed JSON would break its keys.
     if (*brief && inputs->format() != "text")
       throw InvalidInput("--brief", "gives the answer in words, with --format text only (the JSON's \"answer\" is "
                                     "the same answer)");
-    max_tilt_deg->apply(options->max_tilt);
-    options->damped_horizon = *lifetime_horizon;
-    validate(*options);  // before the body's analyses: a bad option costs nothing
+    answer_flags->apply();
     const Body& body = inputs->body();
     if (const Table& table = inputs->table(); table.on_table()) {  // SPEC section 16
       const TableAnalysis analysis = analyse_top_on_table(body, table, inputs->state(), *options);
