@@ -3,6 +3,7 @@
 // threshold, a separate nonlinear run by another integrator, lifetime()).
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -152,6 +153,38 @@ TEST(Answer, DampedBodyFallsAtItsLifetime) {
   // The spin law's closed form: the fall comes after the spin passes the critical spin.
   ASSERT_TRUE(life.time_to_critical);
   EXPECT_GT(*a.answer.falls_at, *life.time_to_critical);
+}
+
+// The analysis keeps the damped body's lifetime() run (issue 41: the report reuses it): the run
+// a direct call with the same options makes, to the step; none for a conservative body.
+TEST(Answer, DampedAnalysisCarriesTheLifetimeItRan) {
+  Body top = example_toy_top();
+  top.damping.axial = 2e-6;
+  const InitialState start = example_motion();
+  AnswerOptions tilted;
+  tilted.max_tilt = 0.7;
+  tilted.damped_horizon = 40.0;
+  LifetimeOptions same;
+  same.max_tilt = 0.7;
+  same.horizon = 40.0;
+  for (const auto& [answer_options, life_options] : {std::pair{AnswerOptions{}, LifetimeOptions{}}, std::pair{tilted, same}}) {
+    const TopAnalysis a = analyse_top(top, start, answer_options);
+    const Lifetime direct = lifetime(top, start, life_options);
+    ASSERT_TRUE(a.lifetime && direct.fall_time && a.lifetime->fall_time);
+    EXPECT_EQ(*a.lifetime->fall_time, *direct.fall_time);
+    EXPECT_EQ(*a.lifetime->fall_spin, *direct.fall_spin);
+    EXPECT_EQ(a.lifetime->largest_tilt, direct.largest_tilt);
+    EXPECT_EQ(a.lifetime->horizon, direct.horizon);
+    EXPECT_EQ(a.lifetime->summary.steps, direct.summary.steps);
+    EXPECT_EQ(a.lifetime->summary.rhs_evaluations, direct.summary.rhs_evaluations);
+    EXPECT_EQ(a.lifetime->time_to_critical, direct.time_to_critical);
+    EXPECT_EQ(*a.answer.lifetime, *direct.fall_time);
+  }
+  EXPECT_EQ(analyse_top(top, start, tilted).lifetime->horizon, 40.0);
+  EXPECT_FALSE(analyse_top(example_toy_top(), start).lifetime);
+  AnswerOptions few_steps;  // a stopped run: no lifetime kept
+  few_steps.integrator.max_steps = 200;
+  EXPECT_FALSE(analyse_top(top, make_state(100.0, 0.05), few_steps).lifetime);
 }
 
 // A hanging body is stable at every spin: min_spin 0.

@@ -107,8 +107,10 @@ struct Answer {
 /// words saying that nothing was decided and why).
 /// `progress` (progress.hpp) is the deciding run's: it gets the simulated time (s) and may throw
 /// to stop it (Python's Ctrl-C), the exception let through.
+/// `life`, when given, gets the damped body's lifetime() run (left empty when it stops).
 Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
-                       const Wander& wander, const AnswerOptions& options = {}, const Progress& progress = {});
+                       const Wander& wander, const AnswerOptions& options = {}, const Progress& progress = {},
+                       std::optional<Lifetime>* life = nullptr);
 
 /// Everything `heavytop stability` says, computed once for the command line, the report and
 /// Python alike: the linear models, the Lyapunov verdict, the wander and the answer.
@@ -118,6 +120,10 @@ struct TopAnalysis {
   LyapunovStability lyapunov;            ///< analyse_lyapunov(body, spin)
   Wander wander;                         ///< axis_wander(body, initial, options.horizon)
   Answer answer;                         ///< answer_question(...)
+  /// A damped body's lifetime() run, the one the answer used (AnswerOptions' horizon, max_tilt
+  /// and tolerances; the default options give lifetime()'s defaults); nullopt for a conservative
+  /// body or when that run stopped (AnswerCase::RunStopped).
+  std::optional<Lifetime> lifetime;
 };
 /// The analyses of `body` at the spin of `initial` and the answer; throws InvalidInput for a
 /// bad body, state or options. `progress` is answer_question()'s.

@@ -114,7 +114,10 @@ Json answer_object(const Answer& a) {
 
 std::string stability_json(const Body& body, const TopAnalysis& analysis) {
   const double spin = analysis.spin;
-  const auto& [_, models, lyapunov, wander, answer] = analysis;
+  const auto& models = analysis.models;
+  const auto& lyapunov = analysis.lyapunov;
+  const auto& wander = analysis.wander;
+  const auto& answer = analysis.answer;
   Json out = stability_object(body, spin, models, answer_object(answer));
   Json l;
   l["verdict"] = std::string(name(lyapunov.verdict.verdict));
@@ -363,7 +366,10 @@ std::string normal_form_text(const LyapunovVerdict& v, double spin, const std::v
 
 std::string stability_text(const Body& body, const TopAnalysis& analysis) {
   const double spin = analysis.spin;
-  const auto& [_, models, lyapunov, wander, answer] = analysis;
+  const auto& models = analysis.models;
+  const auto& lyapunov = analysis.lyapunov;
+  const auto& wander = analysis.wander;
+  const auto& answer = analysis.answer;
   std::ostringstream out;
   out << answer_text(answer) << "\n\n";
   out << "The details\n-----------\n";

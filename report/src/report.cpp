@@ -492,7 +492,7 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
 
   // The answer first (SPEC 14), as `stability` gives it; the motion shown covers what it says.
   const TopAnalysis analysis = analyse_top(body, state, {}, progress);
-  const auto& [analysed_spin, reports, lyapunov, wander, answer] = analysis;
+  const auto& [analysed_spin, reports, lyapunov, wander, answer, answer_life] = analysis;
   const double horizon = t_end.value_or(report_horizon(body, state, answer));
   const Comparison c = compare_models(body, state, sample_times(horizon, 4001), {}, progress);
 
@@ -518,7 +518,9 @@ void write_report(const std::string& dir, const Body& body, const InitialState& 
   std::optional<Lifetime> life;
   std::optional<Figure> life_figure;
   if (!body.damping.conservative()) {
-    life = lifetime(body, state, {}, progress);
+    // The answer's run (default options on both sides: the same run); again only if it stopped,
+    // to fail as before.
+    life = answer_life ? *answer_life : lifetime(body, state, {}, progress);
     life_figure = plot_lifetime(staging.path(), body, state, *life, progress);
     figures.push_back(*life_figure);
   }

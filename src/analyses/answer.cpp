@@ -92,7 +92,8 @@ void validate(const AnswerOptions& options) {
 }
 
 Answer answer_question(const Body& body, const InitialState& initial, const LyapunovStability& lyapunov,
-                       const Wander& wander, const AnswerOptions& options, const Progress& progress) {
+                       const Wander& wander, const AnswerOptions& options, const Progress& progress,
+                       std::optional<Lifetime>* life_out) {
   validate(options);
   Answer a;
   a.spin = initial.spin;
@@ -121,6 +122,7 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
         a.verdict = AnswerVerdict::StaysUpForHorizon;
         a.why = AnswerCase::OutlivesHorizon;
       }
+      if (life_out) *life_out = life;
     } catch (const RunFailure& e) {
       stopped(e, a);
     }
@@ -177,7 +179,7 @@ TopAnalysis analyse_top(const Body& body, const InitialState& initial, const Ans
   t.models = analyse_stability(body, initial.spin);
   t.lyapunov = analyse_lyapunov(body, initial.spin);
   t.wander = axis_wander(body, initial, options.horizon, options.integrator, progress);
-  t.answer = answer_question(body, initial, t.lyapunov, t.wander, options, progress);
+  t.answer = answer_question(body, initial, t.lyapunov, t.wander, options, progress, &t.lifetime);
   return t;
 }
 
