@@ -38,6 +38,9 @@ enum class AnswerCase {
   NotFallen,           ///< not proven stable and it did not fall in the run
   FallsDamped,         ///< damped: the lifetime's run falls
   OutlivesHorizon,     ///< damped: it did not fall within the lifetime's horizon
+  /// damped, exactly upright and at rest transversely: it never tilts in the computation, but its
+  /// spin falls below the critical spin at Answer::time_to_critical, from when any push topples it
+  BalancedDamped,
   RunStopped,          ///< its motion could not be computed to the horizon (Answer::stopped says why, Answer::horizon how far it got); nothing claimed
 };
 
@@ -92,6 +95,9 @@ struct Answer {
   bool hanging = false;             ///< the centre of mass is below the pivot (length < 0)
   /// rad/s, for a damped body: the critical spin its spin decays to (lifetime's), nullopt else.
   std::optional<double> critical_spin;
+  /// s, for a damped body: when its spin law brings the spin down to critical_spin (lifetime's
+  /// time_to_critical), nullopt if never.
+  std::optional<double> time_to_critical;
   /// Why the deciding run stopped before its horizon (AnswerCase::RunStopped; the integrator's
   /// one-line failure, e.g. too many steps for damping this strong), empty otherwise.
   std::string stopped;

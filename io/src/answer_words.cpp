@@ -83,6 +83,7 @@ std::string answer_headline(const Answer& a) {
     case AnswerCase::FallsConservative: return "Falls.";
     case AnswerCase::FallsDamped: return fmt::format("Falls after {}.", time_words(a.falls_at.value_or(0.0)));
     case AnswerCase::BalancedUnstable:
+    case AnswerCase::BalancedDamped:
       return fmt::format("Stays up for the {} computed, but only because it starts exactly upright.",
                          time_words(a.horizon));
     case AnswerCase::RunStopped: return "Not decided.";
@@ -116,6 +117,15 @@ std::string answer_reason(const Answer& a) {
       return fmt::format("Spinning at {} exactly upright, {} stays balanced in the computation, but its upright "
                          "spin is unstable: the slightest disturbance makes it fall.",
                          spin_words(a.spin), body);
+    case AnswerCase::BalancedDamped:
+      return fmt::format("With its damping, spinning at {} exactly upright, {} stays balanced in the computation, "
+                         "but {}: from then on its upright spin is unstable and the slightest disturbance makes it "
+                         "fall.",
+                         spin_words(a.spin), body,
+                         a.time_to_critical.value_or(0.0) > 0.0
+                             ? fmt::format("its spin falls below the critical spin at t = {}",
+                                           time_words(*a.time_to_critical))
+                             : std::string("it spins below the critical spin from the start"));
     case AnswerCase::NotFallen: {
       std::string s = fmt::format("Spinning at {}, {}, {} ", spin_words(a.spin), start_words(a), body);
       s += a.max_tilt ? fmt::format("stayed within {} of vertical over the {} computed", angle_words(*a.max_tilt),

@@ -424,6 +424,14 @@ std::string lifetime_text(const Body& body, const InitialState& initial, const L
                                        life.max_tilt * 180.0 / M_PI)
                          : fmt::format("Stays up for the {:.4g} s computed (its tilt stays below {:.3g} degrees).\n",
                                        life.horizon, life.max_tilt * 180.0 / M_PI));
+  // Exactly upright it never tilts, however slowly it spins (an unstable equilibrium below the
+  // critical spin): say so, and when.
+  const bool upright = initial.theta0 == 0.0 && initial.phi0 == 0.0 && initial.theta_rate0 == 0.0 &&
+                       initial.phi_rate0 == 0.0;
+  if (!life.fall_time && upright && life.time_to_critical && *life.time_to_critical < life.horizon)
+    out << fmt::format("But only because it starts exactly upright: from t = {:.4g} s its spin is below the critical "
+                       "spin and the slightest disturbance makes it fall.\n",
+                       *life.time_to_critical);
   if (life.max_tilt != life.limit_given)
     out << fmt::format("It started beyond the {:.3g} degree limit of a fall, so a fall here is a tilt past {:.3g} "
                        "degrees, halfway from its start to upside down.\n",

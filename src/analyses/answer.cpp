@@ -121,7 +121,12 @@ Answer answer_question(const Body& body, const InitialState& initial, const Lyap
       } else {
         a.verdict = AnswerVerdict::StaysUpForHorizon;
         a.why = AnswerCase::OutlivesHorizon;
+        // Exactly upright it never tilts, however slowly it spins: an unstable equilibrium once
+        // the spin is below the critical spin, which the words must say.
+        if (at_rest_upright(initial) && life.time_to_critical && *life.time_to_critical < a.horizon)
+          a.why = AnswerCase::BalancedDamped;
       }
+      a.time_to_critical = life.time_to_critical;
       if (life_out) *life_out = life;
     } catch (const RunFailure& e) {
       stopped(e, a);
