@@ -574,7 +574,9 @@ def show(body: "Body | Configuration | Trajectory", folder: "os.PathLike[str] | 
     its three.js view of the body moving in 3D, its plots and figures inlined (a few MB; in an
     iframe `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or
     to a new temporary folder; the title names the Configuration's file, else "A body given in
-    Python" (title= to choose).
+    Python" (title= to choose). A temporary folder (folder=None; the view's .folder) is removed
+    when the Python process (the notebook's kernel) exits, or at once if the report fails; a
+    folder given is the caller's and is kept.
 
     show(trajectory): that motion (simulate()'s Trajectory, any model) in the report's 3D view,
     a MotionView (trajectory.view(height); the trajectory's own HTML shows it too).
@@ -583,10 +585,32 @@ def show(body: "Body | Configuration | Trajectory", folder: "os.PathLike[str] | 
         if folder is not None or options:
             raise _invalid("show", "a trajectory takes only height=")
         return body.view(height)
+    if folder is not None:
+        folder = os.fspath(folder)
+        report(body, folder, **options)
+        return ReportView(folder, height)
+    folder = _temporary_folder("heavytop-report-")
+    try:
+        report(body, folder, **options)
+        return ReportView(folder, height)
+    except BaseException:
+        _remove_folder(folder)
+        raise
+
+
+def _remove_folder(folder: str, owner: Optional[int] = None) -> None:
+    import shutil
+    if owner is None or owner == os.getpid():  # not from a forked child that exits
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _temporary_folder(prefix: str) -> str:
+    """A new folder in the temporary directory ($TMPDIR), removed when this process exits."""
+    import atexit
     import tempfile
-    folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
-    report(body, folder, **options)
-    return ReportView(folder, height)
+    folder = tempfile.mkdtemp(prefix=prefix)
+    atexit.register(_remove_folder, folder, os.getpid())
+    return folder
 
 
 def _explorer_page_file() -> str:
