@@ -432,6 +432,30 @@ def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rp
     return Precession.from_json(_core.precession(body, tilt, _spin(spin, spin_rpm)))
 
 
+def example_file(name: str) -> str:
+    """The path of one of the examples the package ships: the repository's examples/ folder,
+    copied into the installed package (heavytop/examples/), so that a notebook or script runs
+    from any folder, e.g. a copy of examples/notebooks/tour.ipynb:
+
+        heavytop.load(heavytop.example_file("toy-top.toml"))         # as --config examples/toy-top.toml
+        t, w = np.loadtxt(heavytop.example_file("spin-decay.csv"), delimiter=",", skiprows=5, unpack=True)
+
+        name        the file's name in examples/: a configuration file (*.toml, SI units: kg m^2,
+                    kg, m, rad/s), spin-decay.csv (a measured spin decay: t in s, spin in rad/s)
+                    or meshes/spinning-top.stl
+
+    An unknown name raises InvalidInput naming the examples ("name: no example 'x.toml'; the
+    examples: asymmetric-plate.toml, ...")."""
+    folder = os.path.join(os.path.dirname(os.path.abspath(__file__)), "examples")
+    shipped = sorted(os.path.relpath(os.path.join(d, f), folder).replace(os.sep, "/")
+                     for d, _, files in os.walk(folder) for f in files)
+    name = os.fspath(name)
+    if name not in shipped:
+        listing = ", ".join(shipped) if shipped else "none (this package was built without them)"
+        raise _invalid("name", f"no example {name!r}; the examples: {listing}")
+    return os.path.join(folder, *name.split("/"))
+
+
 def load(path: "os.PathLike[str] | str") -> Configuration:
     """A configuration file (TOML, SPEC section 4), read by the command line's own reader:
     a Configuration with .body (a Body: [body] or its [[body.part]], and [damping]; SI units),
