@@ -21,6 +21,7 @@ import tempfile
 
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
+from setuptools.command.build_py import build_py
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
 
@@ -96,6 +97,27 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built[0], destination)
 
 
+def example_files():
+    """examples/*.toml, *.csv and meshes/*, relative to examples/: what heavytop.example_file(name)
+    finds in the package (the CMake build copies the same files, python/CMakeLists.txt)."""
+    folder = os.path.join(ROOT, "examples")
+    found = [p for pattern in ("*.toml", "*.csv", os.path.join("meshes", "*"))
+             for p in glob.glob(os.path.join(folder, pattern)) if os.path.isfile(p)]
+    return sorted(os.path.relpath(p, folder) for p in found)
+
+
+class BuildPy(build_py):
+    """The package's Python files, and the examples' data in heavytop/examples/ (copied into the
+    build folder, never into the source tree)."""
+
+    def run(self):
+        super().run()
+        for name in example_files():
+            destination = os.path.join(self.build_lib, "heavytop", "examples", name)
+            os.makedirs(os.path.dirname(destination), exist_ok=True)
+            shutil.copyfile(os.path.join(ROOT, "examples", name), destination)
+
+
 BUILD = build_folder()
 
 setup(
@@ -104,7 +126,7 @@ setup(
     package_dir={"heavytop": "python/heavytop"},
     package_data={"heavytop": ["py.typed", "*.pyi"]},
     ext_modules=[CMakeExtension("heavytop._core", target="heavytop_python")],
-    cmdclass={"build_ext": CMakeBuild},
+    cmdclass={"build_ext": CMakeBuild, "build_py": BuildPy},
     zip_safe=False,
     options={
         "build": {"build_base": BUILD},

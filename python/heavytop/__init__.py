@@ -50,6 +50,7 @@ its arguments and their units):
     rpm(x)                       rad/s of x rpm                                       [--spin-rpm]
     example_toy_top()            the built-in example's Body (kg m^2, kg, m)          [no --config]
     example_motion()             the built-in example's start (rad/s, rad)            [no --config]
+    example_file(name)           a file of examples/: a configuration, spin-decay.csv [--config examples/NAME]
 
 On a table (SPEC section 16): heavytop.Table(contact, friction=, friction_law=, slip_speed=) and
 the Body's tip_radius, rim_radius (m), given to simulate(..., table=) (a TableTrajectory: x, y,
@@ -68,7 +69,7 @@ examples/notebooks/tour.ipynb is a tour.
 """
 from . import _arguments  # noqa: F401 - one-line TypeErrors from _core, before anything takes its functions
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, Table, __version__, example_motion, example_toy_top, grid_values
-from ._api import (body_from_parts, body_report, compare, derive, derive_check, derive_rotations, fit_decay, lifetime,
+from ._api import (body_from_parts, body_report, compare, example_file, derive, derive_check, derive_rotations, fit_decay, lifetime,
                    explore, load, precession, read_map, report, rpm, show, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov, NormalForm,
@@ -79,7 +80,7 @@ from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationChec
 
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "Table", "InvalidInput", "example_toy_top", "example_motion",
-    "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
+    "example_file", "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
     "body_from_parts", "body_report", "precession", "rpm",
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov", "NormalForm",

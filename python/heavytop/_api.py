@@ -432,6 +432,30 @@ def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rp
     return Precession.from_json(_core.precession(body, tilt, _spin(spin, spin_rpm)))
 
 
+def example_file(name: str) -> str:
+    """The path of one of the examples the package ships: the repository's examples/ folder,
+    copied into the installed package (heavytop/examples/), so that a notebook or script runs
+    from any folder, e.g. a copy of examples/notebooks/tour.ipynb:
+
+        heavytop.load(heavytop.example_file("toy-top.toml"))         # as --config examples/toy-top.toml
+        t, w = np.loadtxt(heavytop.example_file("spin-decay.csv"), delimiter=",", skiprows=5, unpack=True)
+
+        name        the file's name in examples/: a configuration file (*.toml, SI units: kg m^2,
+                    kg, m, rad/s), spin-decay.csv (a measured spin decay: t in s, spin in rad/s)
+                    or meshes/spinning-top.stl
+
+    An unknown name raises InvalidInput naming the examples ("name: no example 'x.toml'; the
+    examples: asymmetric-plate.toml, ...")."""
+    folder = os.path.join(os.path.dirname(os.path.abspath(__file__)), "examples")
+    shipped = sorted(os.path.relpath(os.path.join(d, f), folder).replace(os.sep, "/")
+                     for d, _, files in os.walk(folder) for f in files)
+    name = os.fspath(name)
+    if name not in shipped:
+        listing = ", ".join(shipped) if shipped else "none (this package was built without them)"
+        raise _invalid("name", f"no example {name!r}; the examples: {listing}")
+    return os.path.join(folder, *name.split("/"))
+
+
 def load(path: "os.PathLike[str] | str") -> Configuration:
     """A configuration file (TOML, SPEC section 4), read by the command line's own reader:
     a Configuration with .body (a Body: [body] or its [[body.part]], and [damping]; SI units),
@@ -574,7 +598,9 @@ def show(body: "Body | Configuration | Trajectory", folder: "os.PathLike[str] | 
     its three.js view of the body moving in 3D, its plots and figures inlined (a few MB; in an
     iframe `height` pixels tall, scrolled to the 3D view). The folder is written to `folder`, or
     to a new temporary folder; the title names the Configuration's file, else "A body given in
-    Python" (title= to choose).
+    Python" (title= to choose). A temporary folder (folder=None; the view's .folder) is removed
+    when the Python process (the notebook's kernel) exits, or at once if the report fails; a
+    folder given is the caller's and is kept.
 
     show(trajectory): that motion (simulate()'s Trajectory, any model) in the report's 3D view,
     a MotionView (trajectory.view(height); the trajectory's own HTML shows it too).
@@ -583,10 +609,32 @@ def show(body: "Body | Configuration | Trajectory", folder: "os.PathLike[str] | 
         if folder is not None or options:
             raise _invalid("show", "a trajectory takes only height=")
         return body.view(height)
+    if folder is not None:
+        folder = os.fspath(folder)
+        report(body, folder, **options)
+        return ReportView(folder, height)
+    folder = _temporary_folder("heavytop-report-")
+    try:
+        report(body, folder, **options)
+        return ReportView(folder, height)
+    except BaseException:
+        _remove_folder(folder)
+        raise
+
+
+def _remove_folder(folder: str, owner: Optional[int] = None) -> None:
+    import shutil
+    if owner is None or owner == os.getpid():  # not from a forked child that exits
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _temporary_folder(prefix: str) -> str:
+    """A new folder in the temporary directory ($TMPDIR), removed when this process exits."""
+    import atexit
     import tempfile
-    folder = tempfile.mkdtemp(prefix="heavytop-report-") if folder is None else os.fspath(folder)
-    report(body, folder, **options)
-    return ReportView(folder, height)
+    folder = tempfile.mkdtemp(prefix=prefix)
+    atexit.register(_remove_folder, folder, os.getpid())
+    return folder
 
 
 def _explorer_page_file() -> str:

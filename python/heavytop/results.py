@@ -1470,7 +1470,8 @@ class ReportView:
     """The report's page (report.html of `heavytop report`) as one self-contained HTML document:
     its scripts (the three.js bundle heavytop-report.js and its data report-data.js) and figures
     inlined, so that a notebook shows it, the body moving in 3D included, offline, in an iframe.
-    show() makes it; .folder is the report folder it was read from."""
+    show() makes it; .folder is the report folder it was read from (show()'s temporary folder,
+    when given none, is removed as the Python process exits: .html holds everything)."""
 
     __slots__ = ("folder", "html", "height")
 

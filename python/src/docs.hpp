@@ -20,11 +20,17 @@ constexpr const char* kInvalidInput =
 
 constexpr const char* kBody = R"doc(A rigid body turning about a fixed point O in uniform gravity (SPEC section 1). Immutable.
 
-    Body(A, B, C, mass, length, gravity=9.81)
+    Body(A, B, C, mass, length, gravity=9.81, *, transverse_damping=0.0, axial_damping=0.0,
+         friction=0.0, driven=False, offset_x=0.0, offset_y=0.0, Ixy=0.0, Ixz=0.0, Iyz=0.0,
+         tip_radius=0.0, rim_radius=0.0)
 
 A, B, C (kg m^2): principal moments of inertia about the body axes x, y, z through O; mass (kg);
 length (m): R, signed distance from O to the centre of mass along z (> 0: a top on its tip,
 < 0: a hanging gyroscope); gravity (m/s^2): g, acting along -zeta. mgR (N m): m g R.
+The keywords, each 0 (False) by default and described in Body.__init__ (help(heavytop.Body)):
+  damping (SPEC section 6):     transverse_damping, axial_damping (N m s), friction (N m), driven
+  a general body (section 11):  offset_x, offset_y (m), Ixy, Ixz, Iyz (kg m^2)
+  on a table (section 16):      tip_radius, rim_radius (m)
 
 Body frame: principal axes x, y, z through O, z the spin (symmetry) axis. Validated exactly as
 the command line validates [body]: A, B, C, mass finite and > 0, gravity finite and >= 0,

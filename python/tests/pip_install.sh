@@ -82,6 +82,11 @@ assert heavytop.HAS_DERIVE, "built without the symbolic derivations"
 assert heavytop.derive().stability_condition == "omega0^2 > (sqrt(A)+sqrt(B))^2*m*g*R/C^2"
 trajectory = heavytop.simulate(top, **heavytop.example_motion(), t_end=0.1, samples=11)
 assert trajectory.theta.shape == (11,) and trajectory.summary.ok
+# The examples' data ships with the package (a copied notebook finds it from anywhere).
+config = heavytop.load(heavytop.example_file("toy-top.toml"))
+assert config.body == top, config.body
+assert heavytop.load(heavytop.example_file("mesh-top.toml")).body.mass > 0  # its meshes/ beside it
+assert os.path.realpath(heavytop.example_file("spin-decay.csv")).startswith(package + os.sep)
 
 from importlib import metadata
 assert metadata.version("heavytop") == heavytop.__version__, (metadata.version("heavytop"), heavytop.__version__)

@@ -2,12 +2,19 @@
 each figure it shows as OUTPUT_FOLDER/<name>-<cell>-<k>.png. Exits non-zero if any cell raises
 (nbconvert stops there), or if the notebook's copy in the repository holds outputs.
 
+The notebook runs as a user's copy would: copied alone into a temporary folder (so that it
+must find its data through the package, heavytop.example_file, not beside itself), with a
+temporary folder of its own as TMPDIR, which must hold no heavytop-report-* folder (show()'s)
+once the kernel has exited.
+
     run_notebook.py NOTEBOOK OUTPUT_FOLDER        (ctest python_notebook)
 """
 import base64
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 
 import nbformat
 
@@ -25,13 +32,23 @@ def main() -> int:
     for stale in os.listdir(folder):  # the figures of an earlier run
         if stale.startswith(f"{name}-") and stale.endswith(".png"):
             os.remove(os.path.join(folder, stale))
-    # The kernel starts in the notebook's folder, so its relative paths are the repository's.
-    run = subprocess.run([sys.executable, "-m", "nbconvert", "--execute", "--to", "notebook",
-                          "--ExecutePreprocessor.timeout=600", "--ExecutePreprocessor.kernel_name=python3",
-                          "--output-dir", folder, "--output", f"{name}.ipynb", notebook],
-                         env=dict(os.environ, PYDEVD_DISABLE_FILE_VALIDATION="1"))
-    if run.returncode != 0:
-        return run.returncode
+    # The kernel starts in the notebook's folder: a copy's, away from the repository.
+    with tempfile.TemporaryDirectory(prefix="heavytop-notebook-") as work:
+        copy = os.path.join(work, "copy", os.path.basename(notebook))
+        private_tmp = os.path.join(work, "tmp")
+        os.makedirs(os.path.dirname(copy))
+        os.makedirs(private_tmp)
+        shutil.copyfile(notebook, copy)
+        run = subprocess.run([sys.executable, "-m", "nbconvert", "--execute", "--to", "notebook",
+                              "--ExecutePreprocessor.timeout=600", "--ExecutePreprocessor.kernel_name=python3",
+                              "--output-dir", os.path.abspath(folder), "--output", f"{name}.ipynb", copy],
+                             env=dict(os.environ, PYDEVD_DISABLE_FILE_VALIDATION="1", TMPDIR=private_tmp))
+        if run.returncode != 0:
+            return run.returncode
+        left = sorted(f for f in os.listdir(private_tmp) if f.startswith("heavytop-report-"))
+        if left:
+            print(f"{notebook}: the kernel left {left} in its TMPDIR (show()'s report folders)")
+            return 1
     result = nbformat.read(executed, as_version=4)
     figures = 0
     for i, cell in enumerate(result.cells):

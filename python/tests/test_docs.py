@@ -61,3 +61,34 @@ def test_every_public_function_documents_its_units():
         doc = function.__doc__ or ""
         assert len(doc.strip().splitlines()) >= 2 or name in ("rpm",), name
         assert re.search(UNIT, doc), f"{name}: no unit in its docstring"
+
+
+
+def _accepted_arguments(function):
+    """The argument names pybind11 accepts, from the signature it writes as the docstring's first
+    line: "__init__(self: heavytop._core.Body, A: float, ..., *, transverse_damping: float = 0.0, ...)"."""
+    import re
+    signature = function.__doc__.splitlines()[0]
+    return [name for name in re.findall(r"([A-Za-z_][A-Za-z0-9_]*): ", signature) if name != "self"]
+
+
+def test_body_docstring_names_every_keyword_it_accepts():
+    accepted = _accepted_arguments(heavytop.Body.__init__)
+    assert accepted[:6] == ["A", "B", "C", "mass", "length", "gravity"]
+    keywords = accepted[6:]
+    assert {"transverse_damping", "axial_damping", "friction", "driven", "tip_radius"} <= set(keywords)
+    heavytop.Body(1e-4, 1e-4, 1e-4, 0.1, 0.01, **{name: False if name == "driven" else 0.0 for name in keywords})
+    # The class's own docstring (what Body? and the class line of help() show first): its signature
+    # line names every argument, keyword by keyword, with its default.
+    doc = heavytop.Body.__doc__
+    for name in keywords:
+        assert f"{name}=" in doc, f"Body.__doc__ does not name the keyword {name}"
+    for name in accepted[:5]:
+        assert name in doc, name
+    # help(heavytop.Body) describes each, with its unit, in __init__'s text.
+    text = pydoc.render_doc(heavytop.Body, renderer=pydoc.plaintext)
+    init = heavytop.Body.__init__.__doc__.split("\n", 1)[1]
+    for name in accepted:
+        assert name in text, name
+        assert any(line.lstrip().startswith(name) or f", {name}" in line.split(":")[0] for line in init.splitlines()), \
+            f"Body.__init__ does not describe {name}"

@@ -3,6 +3,8 @@ import ast
 import inspect
 import os
 
+import pytest
+
 import heavytop
 import heavytop._core
 
@@ -57,3 +59,22 @@ def test_the_python_functions_are_annotated():
         assert signature.return_annotation is not inspect.Signature.empty, name
         for parameter in signature.parameters.values():
             assert parameter.annotation is not inspect.Parameter.empty, (name, parameter.name)
+
+
+def test_the_examples_data_ships_with_the_package(tmp_path, monkeypatch):
+    # Found from any folder (a copied notebook): the files of examples/ byte for byte.
+    import glob
+    root = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "examples")
+    names = sorted(os.path.relpath(p, root).replace(os.sep, "/")
+                   for pattern in ("*.toml", "*.csv", "meshes/*") for p in glob.glob(os.path.join(root, pattern)))
+    assert {"toy-top.toml", "spin-decay.csv", "meshes/spinning-top.stl"} <= set(names)
+    monkeypatch.chdir(tmp_path)
+    for name in names:
+        path = heavytop.example_file(name)
+        assert os.path.isabs(path) and os.path.dirname(heavytop.__file__) in path, path
+        with open(path, "rb") as mine, open(os.path.join(root, name), "rb") as theirs:
+            assert mine.read() == theirs.read(), name
+    assert heavytop.load(heavytop.example_file("toy-top.toml")).motion["spin"] == 200.0
+    assert heavytop.load(heavytop.example_file("mesh-top.toml")).body.mass > 0  # its meshes/ beside it
+    with pytest.raises(heavytop.InvalidInput, match=r"^name: no example 'top.toml'; the examples: asymmetric-plate"):
+        heavytop.example_file("top.toml")

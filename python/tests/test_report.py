@@ -84,3 +84,30 @@ def test_report_titles(tmp_path):
     assert "<title>heavytop: My top: " in (tmp_path / "a" / "report.html").read_text()
     other = heavytop.Body(4.35e-5, 4.5e-5, 1.2e-5, 0.06, 0.025)
     assert "<title>heavytop: A body given in Python: " in heavytop.show(other, tmp_path / "b", spin=200.0, t_end=0.5).html
+
+
+def test_show_leaves_no_temporary_folder_behind(tmp_path):
+    # A Python (a notebook's kernel) that shows a report and exits: its temporary report folder
+    # (a few MB) is there while it runs and gone after; one that fails leaves none at all.
+    import subprocess
+    import sys
+    private = tmp_path / "tmp"
+    private.mkdir()
+    script = ("import os, heavytop\n"
+              "view = heavytop.show(heavytop.example_toy_top(), spin=200.0, theta0=0.05, t_end=0.5)\n"
+              "assert os.path.isfile(os.path.join(view.folder, 'report.html')), view.folder\n"
+              "assert os.path.dirname(view.folder) == os.environ['TMPDIR'], view.folder\n"
+              "try:\n"
+              "    heavytop.show(heavytop.example_toy_top(), spin=200.0, t_end=-1.0)\n"
+              "except heavytop.InvalidInput:\n"
+              "    pass\n"
+              "assert len([f for f in os.listdir(os.environ['TMPDIR']) if f.startswith('heavytop-report-')]) == 1\n"
+              "print(view.folder)\n")
+    run = subprocess.run([sys.executable, "-c", script], env=dict(os.environ, TMPDIR=str(private)),
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().startswith(str(private / "heavytop-report-"))
+    assert sorted(p.name for p in private.glob("heavytop-report-*")) == []
+    # A folder given is the caller's: kept.
+    heavytop.show(TOP, tmp_path / "mine", spin=200.0, t_end=0.5)
+    assert (tmp_path / "mine" / "report.html").is_file()
