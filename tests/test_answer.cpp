@@ -155,6 +155,27 @@ TEST(Answer, DampedBodyFallsAtItsLifetime) {
   EXPECT_GT(*a.answer.falls_at, *life.time_to_critical);
 }
 
+// A damped top started exactly upright never tilts in the computation, but once its spin has
+// decayed below the critical spin it is an unstable equilibrium (issue 45): the answer says when,
+// at the closed form of the spin law C w' = -d_a w - tau0: t = (C / d_a) ln((w0 + tau0/d_a) /
+// (wc + tau0/d_a)).
+TEST(Answer, ADampedTopExactlyUprightIsBalancedOnlyUntilItsCriticalSpin) {
+  Body top = example_toy_top();
+  top.damping.axial = 2e-7;
+  top.damping.friction = 1e-5;
+  const double w0 = 1500.0 * 3.141592653589793 / 30.0;
+  const Answer a = analyse_top(top, make_state(w0, 0.0)).answer;
+  EXPECT_EQ(a.why, AnswerCase::BalancedDamped);
+  EXPECT_EQ(a.verdict, AnswerVerdict::StaysUpForHorizon);
+  EXPECT_FALSE(a.proven);
+  const double wc = 2.0 * std::sqrt(top.A * top.mass * top.gravity * top.length) / top.C;
+  const double k = top.damping.friction / top.damping.axial;
+  ASSERT_TRUE(a.time_to_critical);
+  EXPECT_NEAR(*a.time_to_critical, top.C / top.damping.axial * std::log((w0 + k) / (wc + k)), 1e-9);
+  // A start off the vertical is the ordinary damped answer: it falls.
+  EXPECT_EQ(analyse_top(top, make_state(w0, 1e-3)).answer.why, AnswerCase::FallsDamped);
+}
+
 // The analysis keeps the damped body's lifetime() run (issue 41: the report reuses it): the run
 // a direct call with the same options makes, to the step; none for a conservative body.
 TEST(Answer, DampedAnalysisCarriesTheLifetimeItRan) {

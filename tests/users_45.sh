@@ -189,4 +189,11 @@ check "no warning for the examples" bash -c "
 for ex in '$examples'/*.toml; do '$H' simulate --config \"\$ex\" --t-end 0.001 --samples 2 > /dev/null 2> e.err || exit 1; ! grep -q implausible e.err || exit 1; done"
 check "... nor for bad input: the refusal alone" refused "^heavytop: error: body.A" body --A -1 --B 2000 --C 1 --mass 1000 --length 15
 
+# A damped top started exactly upright (issue 45): not "stays up" without a word, but when its
+# spin passes the critical spin (the spin law's closed form: 60 ln(207.08 / 183.344) = 7.304 s).
+check "stability: exactly upright, damped, says when it becomes unstable" bash -c "
+'$H' stability --spin-rpm 1500 --axial-damping 2e-7 --friction 1e-5 --theta0 0 | head -1 | grep -q 'only because it starts exactly upright.*below the critical spin at t = 7.304 s'"
+check "lifetime: the same caveat" bash -c "
+'$H' lifetime --spin-rpm 1500 --axial-damping 2e-7 --friction 1e-5 --theta0 0 | grep -q '^But only because it starts exactly upright: from t = 7.304 s'"
+
 finish
