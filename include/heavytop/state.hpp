@@ -26,6 +26,12 @@ InitialState example_motion();
 /// Throws InvalidInput (key "motion.<name>") unless every field is finite.
 void validate(const InitialState& state);
 
+/// True if `state` is the upright permanent rotation exactly: no tilt and no tilt rates, a motion
+/// that never tilts however unstable it is (the answer and lifetime's words say so).
+inline bool at_rest_upright(const InitialState& state) noexcept {
+  return state.theta0 == 0.0 && state.phi0 == 0.0 && state.theta_rate0 == 0.0 && state.phi_rate0 == 0.0;
+}
+
 /// The motion of the axis sampled at times t: theta(t), phi(t) and their rates (SPEC section 2),
 /// column by column, plus optional further named columns (e.g. conserved quantities).
 struct Trajectory {

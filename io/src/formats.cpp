@@ -426,9 +426,7 @@ std::string lifetime_text(const Body& body, const InitialState& initial, const L
                                        life.horizon, life.max_tilt * 180.0 / M_PI));
   // Exactly upright it never tilts, however slowly it spins (an unstable equilibrium below the
   // critical spin): say so, and when.
-  const bool upright = initial.theta0 == 0.0 && initial.phi0 == 0.0 && initial.theta_rate0 == 0.0 &&
-                       initial.phi_rate0 == 0.0;
-  if (!life.fall_time && upright && life.time_to_critical && *life.time_to_critical < life.horizon)
+  if (!life.fall_time && at_rest_upright(initial) && life.time_to_critical && *life.time_to_critical < life.horizon)
     out << fmt::format("But only because it starts exactly upright: from t = {:.4g} s its spin is below the critical "
                        "spin and the slightest disturbance makes it fall.\n",
                        *life.time_to_critical);

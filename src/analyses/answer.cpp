@@ -20,10 +20,6 @@ detail::Violation first_violation(const AnswerOptions& o) {
   return std::nullopt;
 }
 
-bool at_rest_upright(const InitialState& s) {
-  return s.theta0 == 0.0 && s.phi0 == 0.0 && s.theta_rate0 == 0.0 && s.phi_rate0 == 0.0;
-}
-
 /// The smallest spin proven stable, and whether every spin below it is unstable: proven for a
 /// symmetric top, whose threshold C^2 w0^2 = 4 A m g R is sharp (below it the linearisation
 /// grows at every spin); for A != B spins below may be stable without proof, so nothing is claimed.

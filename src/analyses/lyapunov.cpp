@@ -381,8 +381,7 @@ Wander axis_wander(const Body& body, const InitialState& initial, double horizon
     validate(body);
     refuse_general(body, "the Lyapunov analysis");
     validate(initial);
-    if (initial.theta0 == 0.0 && initial.phi0 == 0.0 && initial.theta_rate0 == 0.0 &&
-        initial.phi_rate0 == 0.0) {
+    if (at_rest_upright(initial)) {
       w.max_tilt = 0.0;  // the upright permanent rotation is an exact motion: it never tilts
       return w;
     }
