@@ -40,9 +40,6 @@ class RosenbrockStepper {
   double previous_time() const { return t_old_; }
   const State& state() const { return y_; }
   const State& previous_state() const { return y_old_; }
-  std::size_t evaluations() const { return evaluations_; }
-  Hooks& hooks() { return hooks_; }
-  const System& system() const { return system_; }
 
   void step() {
     if (steps_ >= max_steps_) fail("rosenbrock4", StepOutcome::MaxSteps, t_, max_steps_);
