@@ -108,6 +108,13 @@ Result refused(const std::string& key, const std::string& rule) {
   return r;
 }
 
+// True if `text` is a number above `limit` (anything else is the command's to refuse).
+bool above(const std::string& text, double limit) {
+  char* end = nullptr;
+  const double n = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' && n > limit;
+}
+
 // The page's options (ARGS: "--flag", "value" pairs) checked before the command runs: no flag the
 // page sets itself, --samples within kMaxPageSamples, --max-steps within MAX_STEPS (the command's
 // limit; 0: none). Unknown flags are CLI11's to refuse.
@@ -118,22 +125,14 @@ std::optional<Result> refuse_page_args(const char* command, const std::vector<st
       return refused(flag, fmt::format("not an option of the page's {}() (the page gives the configuration, the "
                                        "output and its format itself)",
                                        command));
-    if (flag == "--samples" && i + 1 < args.size()) {
-      char* end = nullptr;
-      const double n = std::strtod(args[i + 1].c_str(), &end);
-      if (end != args[i + 1].c_str() && *end == '\0' && n > static_cast<double>(kMaxPageSamples))
-        return refused("--samples", fmt::format("must be at most {} in the page, which holds the whole run in memory "
-                                                "(the command line's --format csv streams any number)",
-                                                kMaxPageSamples));
-    }
-    if (flag == "--max-steps" && max_steps > 0 && i + 1 < args.size()) {
-      char* end = nullptr;
-      const double n = std::strtod(args[i + 1].c_str(), &end);
-      if (end != args[i + 1].c_str() && *end == '\0' && n > static_cast<double>(max_steps))
-        return refused("--max-steps", fmt::format("must be at most {} in the page, which a longer run would hold still "
-                                                  "(the command line's default is 10^8 steps, with a progress bar)",
-                                                  max_steps));
-    }
+    if (flag == "--samples" && i + 1 < args.size() && above(args[i + 1], kMaxPageSamples))
+      return refused("--samples", fmt::format("must be at most {} in the page, which holds the whole run in memory "
+                                              "(the command line's --format csv streams any number)",
+                                              kMaxPageSamples));
+    if (flag == "--max-steps" && max_steps > 0 && i + 1 < args.size() && above(args[i + 1], max_steps))
+      return refused("--max-steps", fmt::format("must be at most {} in the page, which a longer run would hold still "
+                                                "(the command line's default is 10^8 steps, with a progress bar)",
+                                                max_steps));
   }
   return std::nullopt;
 }
