@@ -148,7 +148,23 @@ Json table_settings_json(const Body& body, const Table& table) {
   }
   t["tip_radius"] = body.tip_radius;
   t["rim_radius"] = body.rim_radius;
+  // The body's own losses (docs/contract.md), only where they act: earlier outputs stay as they were.
+  auto material = [](const std::optional<Material>& m) -> Json {
+    if (!m) return nullptr;
+    return {{"modulus", m->modulus}, {"poisson", m->poisson}};
+  };
+  if (table.friction_law == FrictionLaw::Contensou) {
+    t["tip_material"] = material(table.tip_material);
+    t["material"] = material(table.material);
+  }
+  if (table.rolling_resistance > 0.0) t["rolling_resistance"] = table.rolling_resistance;
+  if (table.air) t["air"] = {{"density", table.air->density}, {"viscosity", table.air->viscosity},
+                             {"surfaces", table.air_surfaces.empty() ? "equivalent disc" : "parts"}};
   return t;
+}
+
+Json losses_json(const TableLosses& l) {
+  return {{"sliding", l.sliding}, {"drilling", l.drilling}, {"rolling", l.rolling}, {"air", l.air}};
 }
 
 Json spinning_state_json(const SpinningStateStability& s) {
@@ -189,6 +205,7 @@ std::string table_trajectory_json(const Body& body, const Table& table, const In
                     {"max_relative_energy_drift", m.max_relative_energy_drift},
                     {"max_relative_jellett_drift", m.max_relative_jellett_drift},
                     {"max_relative_vertical_momentum_drift", m.max_relative_vertical_momentum_drift}};
+  if (table.has_losses()) out["summary"]["losses"] = losses_json(m.losses);
   return out.dump() + "\n";
 }
 
@@ -210,6 +227,15 @@ std::string table_stability_json(const Body& body, const Table& table, const Tab
                      {"track", a.track},
                      {"final_tilt", a.final_tilt},
                      {"final_spin", a.final_spin}};
+  if (a.spin_down) {
+    const TableSpinDown& d = *a.spin_down;
+    answer["table"]["spin_down"] = {{"critical_spin", optional_number(d.critical_spin)},
+                                    {"time_to_critical", optional_number(d.time_to_critical)},
+                                    {"patch_radius", d.patch_radius},
+                                    {"drilling_torque", d.drilling_torque},
+                                    {"air_torque", d.air_torque},
+                                    {"losses", losses_json(d.losses)}};
+  }
   Json out = stability_object(body, analysis.spin, pivot_models, std::move(answer));
   Json t = table_settings_json(body, table);
   t["upright"] = spinning_state_json(analysis.stability.upright);
