@@ -40,6 +40,7 @@ struct TableParameters {
   double friction = 0.0;               // mu
   double slip_speed = 1.0;             // m/s
   double contact_modulus = 0.0;        // Pa: E* of the tip and the table (Contensou's law)
+  bool drilling = true;                // Contensou's law: its drilling torque acts (not in the linearisation)
   double rolling_resistance = 0.0;     // m: the rolling resistance's length
   bool air = false;                    // the air's torque on the spinning parts
   Air air_properties;
@@ -217,7 +218,7 @@ FrictionPerNormal<T> friction_per_normal(const TableParameters& p, const Vec3<T>
     const T size = sqrt_of(dot(tangential, tangential) + eps * eps * spin * spin +
                            kContensouRegularisation * kContensouRegularisation);
     f.force = (-p.friction / size) * tangential;
-    f.drilling = (-p.friction * eps * eps * spin / size) * gamma;
+    if (p.drilling) f.drilling = (-p.friction * eps * eps * spin / size) * gamma;
   } else {
     f.force = (-p.friction / p.slip_speed) * tangential;
   }

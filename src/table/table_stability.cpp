@@ -200,9 +200,13 @@ TableParameters parameters_for_stability(const Body& body, const Table& table) {
   // Under Coulomb friction the vertical spinning state sticks: it rolls.
   if (table.contact == Contact::Sliding && table.friction_law == FrictionLaw::Coulomb) p.contact = Contact::Rolling;
   // Rolling resistance is set-valued at rest (its regularisation's slope is not physics): the
-  // spinning state is linearised without it. The drilling friction and the air stay: the spin
-  // they slow is held at its value (a frozen linearisation, docs/table.md).
+  // spinning state is linearised without it. Nor with Contensou's drilling torque: it slows the
+  // spin about the vertical, and with the spin held (the state is not an equilibrium then) its
+  // tilt of the vertical torque would read as a growth at M / (C w), which is only the horizontal
+  // angular momentum kept while the vertical one falls: the tilt grows as 1 / w over the whole
+  // spin-down, not exponentially (docs/table.md). The patch's friction force and the air stay.
   p.rolling_resistance = 0.0;
+  p.drilling = false;
   return p;
 }
 
