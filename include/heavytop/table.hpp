@@ -277,4 +277,20 @@ struct TableAnalysis {
 TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const InitialState& initial,
                                    const AnswerOptions& options = {});
 
+/// How long a top stays up on the table (SPEC section 8's `lifetime`, on a table): its spin-down
+/// asleep (table_spin_down) and, from the given start, the computed motion's fall.
+struct TableLifetime {
+  TableSpinDown spin_down;
+  /// s, the run's horizon: the options' or, by default, 1.5 times the time to the critical spin
+  /// and at least 10 s (when that is null: AnswerOptions' default horizon)
+  double horizon = 0.0;
+  TableAnswer answer;  ///< the motion over the horizon (falls_at, final_spin, max_tilt, ...)
+};
+
+/// The lifetime of `body` on `table` from `initial` (spin > 0): table_spin_down() and
+/// analyse_top_on_table()'s motion over `horizon` (nullopt: TableLifetime::horizon's default)
+/// with `options`' limit, tolerances and step budget. Throws as those do.
+TableLifetime table_lifetime(const Body& body, const Table& table, const InitialState& initial,
+                             std::optional<double> horizon, const AnswerOptions& options = {});
+
 }  // namespace heavytop

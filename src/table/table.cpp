@@ -855,3 +855,23 @@ TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const I
 }
 
 }  // namespace heavytop
+
+namespace heavytop {
+
+TableLifetime table_lifetime(const Body& body, const Table& table, const InitialState& initial,
+                             std::optional<double> horizon, const AnswerOptions& options) {
+  if (horizon && !(std::isfinite(*horizon) && *horizon > 0.0))
+    throw InvalidInput("horizon", "must be a finite number > 0 (s)");
+  TableLifetime out;
+  out.spin_down = table_spin_down(body, table, initial.spin);
+  const auto& t = out.spin_down.time_to_critical;
+  // The fall comes soon after the spin passes the critical spin; a run 10 times as long (the
+  // pivot's rule) costs minutes on a table.
+  out.horizon = horizon ? *horizon : t && *t > 0.0 ? std::max(1.5 * *t, 10.0) : options.horizon;
+  AnswerOptions o = options;
+  o.horizon = out.horizon;
+  out.answer = analyse_top_on_table(body, table, initial, o).answer;
+  return out;
+}
+
+}  // namespace heavytop
