@@ -310,6 +310,27 @@ TEST(Chaos, PoincareSectionRowsAreCrossings) {
     EXPECT_NEAR(r.section->crossings[i].t, section.crossings[i].t, 1e-8);
 }
 
+// The general body (SPEC section 11) is taken: Kovalevskaya's top (A = B = 2 C, the centre of
+// mass in the equatorial plane), integrable by her fourth integral, is regular: MEGNO 2 and the
+// exponent under 4 ln t / t.
+TEST(Chaos, KovalevskayaTopIsRegular) {
+  Body b;
+  b.A = b.B = 2e-2;
+  b.C = 1e-2;
+  b.mass = 1.0;
+  b.gravity = 9.81;
+  b.length = 0.0;
+  b.general.offset_x = 1e-3;
+  InitialState s = start(2.0, 1.2);
+  s.phi_rate0 = 1.5;
+  const ChaosResult r = analyse_chaos(b, s, with_horizon(1000.0));
+  EXPECT_FALSE(r.chaotic);
+  for (const auto& [t, l] : r.history)
+    if (t >= 20.0) EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+  EXPECT_NEAR(r.megno, 2.0, 0.3);
+  expect_spectrum_structure(r);
+}
+
 TEST(Chaos, RefusesWhatItDoesNotModel) {
   auto key_of = [](const Body& b, const ChaosOptions& o) -> std::string {
     try {

@@ -52,6 +52,11 @@ std::string chaos_text(const ChaosResult& r) {
                       "its error, or MEGNO {:.3g} is not above 4 (2 on a torus); no prediction horizon is "
                       "stated.\n",
                       r.horizon, r.lyapunov_exponent, r.lyapunov_error, r.regular_bound, r.megno);
+    // MEGNO sees a slow divergence before the exponent stands out of its own error.
+    if (r.megno > 4.0)
+      out += fmt::format("  MEGNO {:.3g} > 4 suggests chaos that this horizon cannot yet establish: try a longer "
+                         "--horizon.\n",
+                         r.megno);
   }
   out += fmt::format("  spectrum (1/s): {:.3g}, {:.3g}, {:.3g}, {:.3g}, {:.3g}, {:.3g}; MEGNO <Y> = {:.4g}; "
                      "{} DOP853 steps, energy kept to {:.1e} relative\n",
