@@ -19,6 +19,9 @@ Json finite_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr
 // "1e-15", "2.5e-07", "0.01": the precision as people write it.
 std::string short_number(double x) { return fmt::format("{:.3g}", x); }
 
+// "1196", "12.3", "0.05": a time in s, whole seconds from 100 s on.
+std::string seconds(double t) { return t >= 100.0 ? fmt::format("{:.0f}", t) : fmt::format("{:.3g}", t); }
+
 }  // namespace
 
 std::string chaos_json(const ChaosResult& r) {
@@ -43,15 +46,19 @@ std::string chaos_text(const ChaosResult& r) {
   if (r.chaotic) {
     const double horizon = r.prediction_horizon.value_or(0.0);
     out = fmt::format("Chaotic: the largest Lyapunov exponent is {:.3g} +- {:.2g} 1/s; a start known to {} is "
-                      "predictable to 1 % for the first {:.3g} s{}.\n",
-                      r.lyapunov_exponent, r.lyapunov_error, short_number(r.precision), horizon,
-                      horizon == 0.0 ? " (not even at the start: the start is known to worse than 1 %)" : "");
+                      "predictable to 1 % for the first {} s{}.\n",
+                      r.lyapunov_exponent, r.lyapunov_error, short_number(r.precision), seconds(horizon),
+                      horizon == 0.0 ? " (not even at the start: it is known to worse than 1 %)" : "");
   } else {
-    out = fmt::format("Not chaotic over {:.4g} s: the largest Lyapunov exponent {:.3g} +- {:.2g} 1/s is not above "
-                      "the {:.3g} 1/s (4 ln T / T) a regular motion still shows at that horizon by three times "
-                      "its error, or MEGNO {:.3g} is not above 4 (2 on a torus); no prediction horizon is "
-                      "stated.\n",
-                      r.horizon, r.lyapunov_exponent, r.lyapunov_error, r.regular_bound, r.megno);
+    // Each of SPEC's two conditions that failed, in words.
+    std::string why;
+    if (!(r.lyapunov_exponent > r.regular_bound + 3.0 * r.lyapunov_error))
+      why = fmt::format("the largest Lyapunov exponent, {:.3g} +- {:.2g} 1/s, does not stand above the {:.3g} 1/s "
+                        "(4 ln T / T) a regular motion still shows at this horizon by three times its error",
+                        r.lyapunov_exponent, r.lyapunov_error, r.regular_bound);
+    if (!(r.megno > 4.0))
+      why += fmt::format("{}MEGNO is {:.3g}, not above 4 (2 on a torus)", why.empty() ? "" : ", and ", r.megno);
+    out = fmt::format("Not chaotic over {} s: {}; no prediction horizon is stated.\n", seconds(r.horizon), why);
     // MEGNO sees a slow divergence before the exponent stands out of its own error.
     if (r.megno > 4.0)
       out += fmt::format("  MEGNO {:.3g} > 4 suggests chaos that this horizon cannot yet establish: try a longer "
