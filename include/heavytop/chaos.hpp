@@ -85,8 +85,9 @@ struct ChaosResult {
   /// error (ten equal blocks' exponents) and the RMS deviation of l(t) from l(T) over t >= T/2
   /// (docs/chaos.md).
   double lyapunov_error = 0.0;
-  /// (s, 1/s): the running value l(t) at renormalisations, at most kMaxChaosHistory rows, the
-  /// last at T.
+  /// (s, 1/s): the running value l(t) at the first step end in each T/1000 (renormalised or
+  /// not: the first vector's growth since its last renormalisation counts), at most
+  /// kMaxChaosHistory rows, the last at T.
   std::vector<std::array<double, 2>> history;
   /// 1/s, all six exponents by QR (Shimada-Nagashima), in descending order.
   std::array<double, 6> spectrum{};

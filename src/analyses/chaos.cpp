@@ -131,7 +131,8 @@ struct ChaosSystem {
 struct Accumulator {
   double interval = 1.0, horizon = 1.0;
   double next = 1.0;              // s, the next renormalisation
-  double next_row = 0.0;          // s, the next history row
+  double next_row = 0.0;          // s, the next history row: horizon row / kMaxChaosHistory
+  std::size_t row = 1;
   std::array<double, 6> log_sum{};
   std::vector<std::array<double, 2>> history;
 
@@ -148,10 +149,13 @@ struct Accumulator {
     V = Q;
   }
 
-  void record(double t) {
-    if (t <= 0.0) return;
-    if (!history.empty() && history.back()[0] == t) return;
-    history.push_back({t, log_sum[0] / t});
+  // A history row at the end of a step (t, the frame V there): S(t) is the sum so far plus the
+  // first vector's growth since its last renormalisation, so rows need not wait for one.
+  void record(double t, const double* frame) {
+    if (t <= 0.0 || t < next_row) return;
+    const double S = log_sum[0] + std::log(Eigen::Map<const Mat6>(frame).col(0).norm());
+    history.push_back({t, S / t});
+    while (next_row <= t) next_row = horizon * static_cast<double>(++row) / static_cast<double>(kMaxChaosHistory);
   }
 };
 
@@ -170,10 +174,6 @@ struct ChaosHooks {
     // The frame changed: so does its rate (linear in it); MEGNO's rates do not.
     system.tangent_rates(y, dydt);
     while (acc->next <= t) acc->next += acc->interval;
-    if (t >= acc->next_row) {
-      acc->record(t);
-      while (acc->next_row <= t) acc->next_row += acc->horizon / static_cast<double>(kMaxChaosHistory);
-    }
   }
   void rejected() {}
   void accepted(double, const std::array<double, kAugmented>&, std::size_t) {}
@@ -350,7 +350,8 @@ void scan_section(Stepper& stepper, std::vector<SectionCrossing>& out) {
 // (N = kAugmented). Returns the stepper's counts; fills the section and the energy drift.
 template <std::size_t N, class Hooks>
 void run(const Flow& flow, double omega, const std::array<double, N>& y0, const ChaosOptions& options, Hooks hooks,
-         PoincareSection* section, ChaosResult& counts, const Progress& progress, std::array<double, N>& end) {
+         PoincareSection* section, ChaosResult& counts, const Progress& progress, std::array<double, N>& end,
+         Accumulator* acc = nullptr) {
   detail::Dop853Stepper<N, ChaosSystem<N>, Hooks> stepper(ChaosSystem<N>{flow, omega}, y0, options.horizon,
                                                            options.tolerances, std::move(hooks));
   const double e0 = flow.energy(y0.data());
@@ -364,6 +365,7 @@ void run(const Flow& flow, double omega, const std::array<double, N>& y0, const 
     const double e = flow.energy(stepper.state().data());
     if (energy_scale > 0.0) drift = std::max(drift, std::abs(e - e0) / energy_scale);
     if (section) scan_section(stepper, section->crossings);
+    if constexpr (N == kAugmented) acc->record(stepper.time(), stepper.state().data() + kBase);
     if (progress && steps % 64 == 0) progress(stepper.time());
   }
   if (section) section->max_relative_energy_drift = drift;
@@ -422,13 +424,13 @@ ChaosResult analyse_chaos(const Body& body, const InitialState& initial, const C
   PoincareSection section;
   std::array<double, kAugmented> end{};
   run<kAugmented>(flow, omega, y0, options, ChaosHooks{&acc, ChaosSystem<kAugmented>{flow, omega}},
-                  options.section ? &section : nullptr, result, progress, end);
-  // The growth since the last renormalisation, then the row at T.
+                  options.section ? &section : nullptr, result, progress, end, &acc);
+  // The growth since the last renormalisation. The last step ends at T exactly, so the last
+  // row is at T (one per T/1000 at most: kMaxChaosHistory rows).
   acc.renormalise(Eigen::Map<Mat6>(end.data() + kBase));
-  acc.record(T);
-  // At most kMaxChaosHistory rows: one per T/1000 above, but a renormalisation forced by
-  // growth may have added one between.
-  while (acc.history.size() > kMaxChaosHistory) acc.history.erase(acc.history.end() - 2);
+  if (acc.history.empty() || acc.history.back()[0] != T) acc.history.push_back({T, 0.0});
+  acc.history.back()[1] = acc.log_sum[0] / T;
+  if (acc.history.size() > kMaxChaosHistory) acc.history.erase(acc.history.end() - 2);
 
   result.lyapunov_exponent = acc.log_sum[0] / T;
   result.history = std::move(acc.history);
