@@ -113,7 +113,9 @@ TEST(Chaos, LagrangeTopIsRegular) {
   // The running exponent of a torus decays like ln t / t: under 4 ln t / t all along.
   ASSERT_FALSE(r.history.empty());
   for (const auto& [t, l] : r.history)
-    if (t >= 10.0) EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+    if (t >= 10.0) {
+      EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+    }
   EXPECT_LT(r.lyapunov_exponent, regular_bound(100.0));
   EXPECT_NEAR(r.megno, 2.0, 0.5);  // MEGNO -> 2 on a torus
   expect_spectrum_structure(r);
@@ -125,7 +127,9 @@ TEST(Chaos, SleepingAsymmetricTopIsRegular) {
   const ChaosResult r = analyse_chaos(plate(), start(3.0, 0.05), with_horizon(1000.0));
   EXPECT_FALSE(r.chaotic);
   for (const auto& [t, l] : r.history)
-    if (t >= 10.0) EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+    if (t >= 10.0) {
+      EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+    }
   EXPECT_LT(r.megno, 2.5);  // 2 on a torus, 0 on a stable periodic orbit: never growing
   EXPECT_GT(r.megno, 1.0);
   expect_spectrum_structure(r);
@@ -345,7 +349,9 @@ TEST(Chaos, KovalevskayaTopIsRegular) {
   const ChaosResult r = analyse_chaos(b, s, with_horizon(1000.0));
   EXPECT_FALSE(r.chaotic);
   for (const auto& [t, l] : r.history)
-    if (t >= 20.0) EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+    if (t >= 20.0) {
+      EXPECT_LT(l, regular_bound(t)) << "t = " << t;
+    }
   EXPECT_NEAR(r.megno, 2.0, 0.3);
   expect_spectrum_structure(r);
 }
