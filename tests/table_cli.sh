@@ -121,7 +121,14 @@ check "air on a pivot" refuse table.air simulate --air
 check "rolling resistance under coulomb" refuse table.rolling_resistance simulate --config "$examples/tippe-top.toml" --friction-law coulomb --rolling-resistance 1e-4
 printf '[body]\nA = 4.35e-5\nB = 4.35e-5\nC = 1.2e-5\nmass = 0.06\nlength = 0.025\ntip_radius = 5e-4\n[table]\ncontact = "sliding"\nfriction = 0.3\nair_density = 1.2\n' > thin-air.toml
 check "air density without air" refuse table.air_density simulate --config thin-air.toml
-check "lifetime on a table" refuse table.contact lifetime --config "$examples/tippe-top.toml"
+# lifetime on a table: SPEC 8's keys from the spin-down asleep, and the motion over the horizon.
+"$H" lifetime --config "$examples/wooden-top-on-table.toml" --horizon 2 --format json > wooden-life.json
+check "lifetime on a table" python3 -c "
+import json
+life, s = json.load(open('wooden-life.json')), json.load(open('wooden.json'))['answer']['table']['spin_down']
+assert life['spin_decay']['time_to_critical'] == s['time_to_critical'] and life['table']['spin_down'] == s, (life, s)
+assert life['fall']['time'] is None and life['horizon'] == 2 and life['table']['verdict'] == 'stays up for the horizon'"
+check "lifetime on a table falls" bash -c "'$H' lifetime --config '$examples/rising-top.toml' --spin 100 | head -1 | grep -q '^Falls after'"
 check "damping on a table" refuse damping.axial simulate --contact sliding --axial-damping 1e-6
 check "unknown law" refuse table.friction_law simulate --contact sliding --friction-law dry
 check "flat rim" refuse motion.theta0 simulate --contact rolling --rim-radius 0.01 --theta0 0
