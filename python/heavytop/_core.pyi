@@ -3,7 +3,7 @@
 Use the package instead (`import heavytop`): its functions give these their defaults and
 wrap what they return in typed results (heavytop.results).
 """
-from typing import Any, Dict, Literal, Optional, Tuple
+from typing import Any, Dict, Literal, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -76,8 +76,13 @@ class Table:
     """The table under the body (SPEC section 16, [table]). Immutable."""
 
     def __init__(self, contact: Literal["pivot", "frictionless", "rolling", "sliding"] = "pivot", *,
-                 friction: Optional[float] = None, friction_law: Optional[Literal["viscous", "coulomb"]] = None,
-                 slip_speed: Optional[float] = None) -> None: ...
+                 friction: Optional[float] = None,
+                 friction_law: Optional[Literal["viscous", "coulomb", "contensou"]] = None,
+                 slip_speed: Optional[float] = None,
+                 tip_material: Optional[Union[str, Tuple[float, float]]] = None,
+                 material: Optional[Union[str, Tuple[float, float]]] = None,
+                 rolling_resistance: Optional[float] = None, air: Optional[bool] = None,
+                 air_density: Optional[float] = None, air_viscosity: Optional[float] = None) -> None: ...
     @property
     def contact(self) -> str: ...
     @property
@@ -86,6 +91,12 @@ class Table:
     def friction_law(self) -> str: ...
     @property
     def slip_speed(self) -> float: ...
+    @property
+    def rolling_resistance(self) -> float: ...
+    @property
+    def air(self) -> bool: ...
+    @property
+    def has_losses(self) -> bool: ...
     @property
     def on_table(self) -> bool: ...
     def to_dict(self) -> Dict[str, Any]: ...

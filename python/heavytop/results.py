@@ -813,6 +813,9 @@ class TableSummary(JsonResult):
     max_relative_vertical_momentum_drift: float
     """The same for the vertical angular momentum about G."""
     _data: Dict[str, Any] = field(repr=False)
+    losses: Optional[Dict[str, float]] = None
+    """With the body's own losses (Table.has_losses): J, the energy each took over the run,
+    {"sliding", "drilling", "rolling", "air"}; None otherwise."""
 
     @property
     def model(self) -> str:

@@ -27,12 +27,21 @@ namespace {
 
 constexpr const char* kTableDoc = R"doc(The table under the body (SPEC section 16, a configuration file's [table]). Immutable.
 
-    Table(contact="pivot", *, friction=None, friction_law=None, slip_speed=None)
+    Table(contact="pivot", *, friction=None, friction_law=None, slip_speed=None, tip_material=None,
+          material=None, rolling_resistance=None, air=None, air_density=None, air_viscosity=None)
 
 contact: "pivot" (O fixed: no table; sections 1-15) | "frictionless" | "rolling" | "sliding"
 friction: mu (dimensionless, >= 0; default 0): "sliding" only                 [--table-friction]
-friction_law: "viscous" (F = -mu N v / slip_speed, the default) | "coulomb": "sliding" only
+friction_law: "viscous" (F = -mu N v / slip_speed, the default) | "coulomb" | "contensou"
+    (Coulomb's law over the tip's Hertz patch, with its drilling torque): "sliding" only
 slip_speed: m/s (> 0; default 1): the viscous law's reference speed           [--slip-speed]
+tip_material, material: "contensou": the tip's and the table's materials, names of the common
+    ones ("steel", "brass", "aluminium", "glass", "abs", "nylon", "wood", "oak", "marble")
+    or (modulus in Pa, poisson) pairs                          [--tip-material, --table-material]
+rolling_resistance: m (>= 0; default 0): "sliding" under "viscous" or "contensou"
+air: True: the still air's torque against the spin (a body given by its moments is dragged as
+    its equivalent disc; load() takes the parts' surfaces from the file)           [--air]
+air_density: kg/m^3 (> 0; default 1.204), air_viscosity: Pa s (> 0; default 1.813e-5)
 
 The body's shape where it touches is Body's tip_radius and rim_radius (m). Checked by the
 command line's own reader of [table], a key given as given there (None: not given): bad values
@@ -41,18 +50,49 @@ raise InvalidInput with its message, e.g. "table.friction: must be a finite numb
 simulate(body, table=...) and stability(body, spin, table=...); load() reads it from [table].
 )doc";
 
+// A material as the file gives it: a name, or (modulus, poisson) under the two keys.
+void set_material(io::Configuration& config, const py::object& value, const char* named, const char* modulus,
+                  const char* poisson) {
+  if (value.is_none()) return;
+  if (py::isinstance<py::str>(value)) {
+    config.settings[named] = value.cast<std::string>();
+    return;
+  }
+  const auto pair = value.cast<std::pair<double, double>>();
+  config.settings[modulus] = pair.first;
+  config.settings[poisson] = pair.second;
+}
+
 Table make_table(const std::string& contact, std::optional<double> friction, std::optional<std::string> friction_law,
-                 std::optional<double> slip_speed) {
+                 std::optional<double> slip_speed, const py::object& tip_material, const py::object& material,
+                 std::optional<double> rolling_resistance, std::optional<bool> air, std::optional<double> air_density,
+                 std::optional<double> air_viscosity) {
   io::Configuration config;  // [table] as a file gives it: the keys given, checked by the CLI's reader
   config.settings["table.contact"] = contact;
   if (friction) config.settings["table.friction"] = *friction;
   if (friction_law) config.settings["table.friction_law"] = *friction_law;
   if (slip_speed) config.settings["table.slip_speed"] = *slip_speed;
+  set_material(config, tip_material, "table.tip_material", "table.tip_modulus", "table.tip_poisson");
+  set_material(config, material, "table.material", "table.modulus", "table.poisson");
+  if (rolling_resistance) config.settings["table.rolling_resistance"] = *rolling_resistance;
+  if (air) config.settings["table.air"] = *air;
+  if (air_density) config.settings["table.air_density"] = *air_density;
+  if (air_viscosity) config.settings["table.air_viscosity"] = *air_viscosity;
   return io::table_of(config);
 }
 
+py::object material_state(const std::optional<Material>& m) {
+  return m ? py::object(py::make_tuple(m->modulus, m->poisson)) : py::object(py::none());
+}
+
 py::tuple table_state(const Table& t) {
-  return py::make_tuple(std::string(name(t.contact)), t.friction, std::string(name(t.friction_law)), t.slip_speed);
+  py::list surfaces;
+  for (const auto& a : t.air_surfaces)
+    surfaces.append(py::make_tuple(static_cast<int>(a.kind), a.radius, a.inner_radius, a.length));
+  return py::make_tuple(std::string(name(t.contact)), t.friction, std::string(name(t.friction_law)), t.slip_speed,
+                        material_state(t.tip_material), material_state(t.material), t.rolling_resistance,
+                        t.air ? py::object(py::make_tuple(t.air->density, t.air->viscosity)) : py::object(py::none()),
+                        py::tuple(surfaces));
 }
 
 // The "table" object of `simulate --format json` (the contact, its law, the body's radii) and
@@ -112,17 +152,27 @@ py::tuple stability_on_table(const Body& body, const Table& table, const Initial
 void bind_table(py::module_& m) {
   py::class_<Table>(m, "Table", kTableDoc)
       .def(py::init(&make_table), "contact"_a = "pivot", py::kw_only(), "friction"_a = py::none(),
-           "friction_law"_a = py::none(), "slip_speed"_a = py::none(),
+           "friction_law"_a = py::none(), "slip_speed"_a = py::none(), "tip_material"_a = py::none(),
+           "material"_a = py::none(), "rolling_resistance"_a = py::none(), "air"_a = py::none(),
+           "air_density"_a = py::none(), "air_viscosity"_a = py::none(),
            "contact: \"pivot\" | \"frictionless\" | \"rolling\" | \"sliding\"\n"
            "friction: mu (>= 0), sliding only\n"
-           "friction_law: \"viscous\" | \"coulomb\", sliding only\n"
-           "slip_speed: m/s (> 0), the viscous law's reference speed")
+           "friction_law: \"viscous\" | \"coulomb\" | \"contensou\", sliding only\n"
+           "slip_speed: m/s (> 0), the viscous law's reference speed\n"
+           "tip_material, material: contensou: names or (modulus Pa, poisson)\n"
+           "rolling_resistance: m (>= 0)\n"
+           "air: True for the still air's torque; air_density kg/m^3, air_viscosity Pa s")
       .def_property_readonly("contact", [](const Table& t) { return std::string(name(t.contact)); },
                              "\"pivot\" | \"frictionless\" | \"rolling\" | \"sliding\"")
       .def_readonly("friction", &Table::friction, "mu (dimensionless): the sliding contact's friction coefficient")
       .def_property_readonly("friction_law", [](const Table& t) { return std::string(name(t.friction_law)); },
                              "\"viscous\" | \"coulomb\" (sliding)")
       .def_readonly("slip_speed", &Table::slip_speed, "m/s, the viscous law's reference speed")
+      .def_readonly("rolling_resistance", &Table::rolling_resistance, "m, the rolling resistance's length")
+      .def_property_readonly("air", [](const Table& t) { return t.air.has_value(); },
+                             "True if the still air's torque acts")
+      .def_property_readonly("has_losses", &Table::has_losses,
+                             "True with the body's own losses (contensou, rolling resistance, air)")
       .def_property_readonly("on_table", &Table::on_table, "True for every contact but the pivot")
       .def("to_dict", [](const Table& t) {
              py::dict d("contact"_a = std::string(name(t.contact)));
@@ -131,6 +181,7 @@ void bind_table(py::module_& m) {
                d["friction_law"] = std::string(name(t.friction_law));
                d["slip_speed"] = t.slip_speed;
              }
+             if (t.has_losses()) d["has_losses"] = true;
              return d;
            }, "The JSON's \"table\" object without the body's radii: {contact}, and for \"sliding\" friction,\n"
               "friction_law, slip_speed (m/s).")
@@ -142,8 +193,15 @@ void bind_table(py::module_& m) {
                return fmt::format("heavytop.Table(\"{}\"{})", name(t.contact),
                                   t.on_table() && t.slip_speed != 1.0 ? fmt::format(", slip_speed={}", t.slip_speed)
                                                                       : std::string());
-             return fmt::format("heavytop.Table(\"sliding\", friction={}, friction_law=\"{}\", slip_speed={})",
-                                t.friction, name(t.friction_law), t.slip_speed);
+             std::string extra;  // the body's own losses, where set (a file's part surfaces are not shown)
+             auto material = [](const Material& m) { return fmt::format("({}, {})", m.modulus, m.poisson); };
+             if (t.tip_material) extra += ", tip_material=" + material(*t.tip_material);
+             if (t.material) extra += ", material=" + material(*t.material);
+             if (t.rolling_resistance > 0.0) extra += fmt::format(", rolling_resistance={}", t.rolling_resistance);
+             if (t.air)
+               extra += fmt::format(", air=True, air_density={}, air_viscosity={}", t.air->density, t.air->viscosity);
+             return fmt::format("heavytop.Table(\"sliding\", friction={}, friction_law=\"{}\", slip_speed={}{})",
+                                t.friction, name(t.friction_law), t.slip_speed, extra);
            })
       .def(py::pickle(&table_state, [](const py::tuple& s) {
         Table t;
@@ -151,6 +209,23 @@ void bind_table(py::module_& m) {
         t.friction = s[1].cast<double>();
         t.friction_law = friction_law_from_name(s[2].cast<std::string>()).value_or(FrictionLaw::Viscous);
         t.slip_speed = s[3].cast<double>();
+        auto material = [](const py::object& m) -> std::optional<Material> {
+          if (m.is_none()) return std::nullopt;
+          const auto pair = m.cast<std::pair<double, double>>();
+          return Material{pair.first, pair.second};
+        };
+        t.tip_material = material(s[4]);
+        t.material = material(s[5]);
+        t.rolling_resistance = s[6].cast<double>();
+        if (!s[7].is_none()) {
+          const auto pair = s[7].cast<std::pair<double, double>>();
+          t.air = Air{pair.first, pair.second};
+        }
+        for (const auto& a : s[8].cast<py::tuple>()) {
+          const auto f = a.cast<std::tuple<int, double, double, double>>();
+          t.air_surfaces.push_back({static_cast<AirSurface::Kind>(std::get<0>(f)), std::get<1>(f), std::get<2>(f),
+                                    std::get<3>(f)});
+        }
         validate(t);
         return t;
       }));

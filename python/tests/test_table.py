@@ -283,3 +283,35 @@ def test_stability_on_a_table_at_a_shorter_horizon_is_the_cli_s(tmp_path):
                            table=heavytop.Table("rolling"))
     assert s.to_dict() == expected
     assert s.table.friction is None and s.table.slip_speed is None
+
+
+# ---- the body's own losses (docs/table.md) ---------------------------------------------------------
+
+WOODEN = os.path.join(ROOT, "examples", "wooden-top-on-table.toml")
+
+
+def test_a_table_with_the_body_s_own_losses_is_the_cli_s():
+    t = heavytop.Table("sliding", friction=0.3, friction_law="contensou", tip_material="steel", material=(1.6e9, 0.35),
+                       rolling_resistance=1e-4, air=True)
+    assert (t.friction_law, t.rolling_resistance, t.air, t.has_losses) == ("contensou", 1e-4, True, True)
+    assert pickle.loads(pickle.dumps(t)) == t
+    assert eval(repr(t), {"heavytop": heavytop}) == t
+    assert t == heavytop.Table("sliding", friction=0.3, friction_law="contensou", tip_material=(200e9, 0.29),
+                               material="oak", rolling_resistance=1e-4, air=True)
+    with pytest.raises(heavytop.InvalidInput, match="table.tip_material"):
+        heavytop.Table("sliding", friction=0.3, friction_law="contensou", material="oak")
+    with pytest.raises(heavytop.InvalidInput, match="table.air_density"):
+        heavytop.Table("sliding", friction=0.3, air_density=1.2)
+
+
+def test_the_losses_booked_are_the_energy_lost_and_the_spin_down_is_the_cli_s():
+    config = heavytop.load(WOODEN)
+    assert config.table.has_losses and config.table.air
+    run = heavytop.simulate(config.body, **config.motion, table=config.table, t_end=0.5, samples=6)
+    lost = run.energy[0] - run.energy
+    booked = sum(run[c] for c in ("loss_sliding", "loss_drilling", "loss_rolling", "loss_air"))
+    assert np.all(np.abs(booked[1:] - lost[1:]) <= 1e-6 * lost[1:])
+    s = heavytop.stability(config.body, **config.motion, table=config.table, horizon=1.0)
+    assert s.to_dict()["answer"]["table"]["spin_down"] == \
+        cli_json("stability", "--config", WOODEN, "--horizon", "1")["answer"]["table"]["spin_down"]
+    assert "Asleep on this table it spins about 51.31 s" in str(s)
