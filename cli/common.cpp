@@ -239,8 +239,10 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses us
     t.material = named(t.material_value, "--table-material", ("contensou: the table's material, " + materials).c_str(), "");
     number(t.rolling_resistance, "--rolling-resistance", "m, sliding: the rolling resistance's length (>= 0, default 0)",
            "Table");
-    t.air = command.add_flag("--air")
-                ->description("on a table: the still air's torque against the spin (20 C, 1 atm)")
+    t.air = command.add_option("--air", t.air_value, "true: on a table, the still air's torque against the spin (20 C, 1 atm)")
+                ->type_name("BOOL")
+                ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+                ->default_str("false")
                 ->group("Table");
   }
   command.add_option("--format", format_, "output format")
@@ -380,7 +382,7 @@ Table Inputs::resolve_table(Body& body) const {
     if (t.tip_material->count()) merged.settings["table.tip_material"] = t.tip_material_value;
     if (t.material->count()) merged.settings["table.material"] = t.material_value;
     if (t.rolling_resistance.option->count()) merged.settings["table.rolling_resistance"] = t.rolling_resistance.value;
-    if (t.air->count()) merged.settings["table.air"] = true;
+    if (t.air->count()) merged.settings["table.air"] = t.air_value;
     if (t.tip_radius.option->count()) body.tip_radius = t.tip_radius.value;
     if (t.rim_radius.option->count()) body.rim_radius = t.rim_radius.value;
   }

@@ -169,6 +169,7 @@ class Inputs {
     std::string friction_law_value;
     CLI::Option *tip_material = nullptr, *material = nullptr, *air = nullptr;
     std::string tip_material_value, material_value;
+    bool air_value = false;
     Override friction, slip_speed, tip_radius, rim_radius, rolling_resistance;
   };
   TableOptions table_options_;

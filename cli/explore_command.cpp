@@ -47,6 +47,25 @@ std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
       table["friction"] = t.friction;
       table["friction_law"] = std::string(name(t.friction_law));
       if (t.friction_law == FrictionLaw::Viscous) table["slip_speed"] = t.slip_speed;
+      // A material by its name where it is one of the common ones, else by its numbers.
+      auto material = [&](const std::optional<Material>& m, const std::string& prefix) {
+        if (!m) return;
+        for (const auto& named : common_materials())
+          if (named.material.modulus == m->modulus && named.material.poisson == m->poisson) {
+            table[prefix + "material"] = std::string(named.name);
+            return;
+          }
+        table[prefix + "modulus"] = m->modulus;
+        table[prefix + "poisson"] = m->poisson;
+      };
+      material(t.tip_material, "tip_");
+      material(t.material, "");
+      if (t.rolling_resistance > 0.0) table["rolling_resistance"] = t.rolling_resistance;
+    }
+    if (t.air) {
+      table["air"] = true;
+      table["air_density"] = t.air->density;
+      table["air_viscosity"] = t.air->viscosity;
     }
     config["table"] = table;
   }

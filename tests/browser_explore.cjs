@@ -249,6 +249,12 @@ const testValues = {
   "--table-friction": [["--contact", "sliding", "--tip-radius", "0.002", ...horizonOfTable], "0.2"],
   "--friction-law": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "coulomb"],
   "--slip-speed": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "0.5"],
+  "--tip-material": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", "--friction-law", "contensou",
+                      "--table-material", "oak", ...horizonOfTable], "brass"],
+  "--table-material": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", "--friction-law", "contensou",
+                        "--tip-material", "steel", ...horizonOfTable], "glass"],
+  "--rolling-resistance": [["--contact", "sliding", "--table-friction", "0.3", "--tip-radius", "0.002", ...horizonOfTable], "1e-4"],
+  "--air": [["--contact", "frictionless", "--tip-radius", "0.002", ...horizonOfTable], "true"],
   "--horizon": [["--spin", "100"], "20"], "--max-tilt": [["--spin", "60"], "0.5"],
   "--lifetime-horizon": [["--axial-damping", "2e-6"], "50"],
   // Below its critical spin the toy top nutates to 1.45 rad: its 100 s need more steps than these.

@@ -117,7 +117,7 @@ assert abs(w[0] - w[1]) < 1e-3 * w[0], w"
 check "contensou needs materials" refuse table.tip_material simulate --config "$examples/tippe-top.toml" --friction-law contensou
 check "unknown material" refuse table.material simulate --config "$examples/tippe-top.toml" --friction-law contensou --tip-material abs --table-material granite
 check "contensou needs a round tip" refuse body.tip_radius simulate --contact sliding --friction-law contensou --tip-material steel --table-material oak
-check "air on a pivot" refuse table.air simulate --air
+check "air on a pivot" refuse table.air simulate --air true
 check "rolling resistance under coulomb" refuse table.rolling_resistance simulate --config "$examples/tippe-top.toml" --friction-law coulomb --rolling-resistance 1e-4
 printf '[body]\nA = 4.35e-5\nB = 4.35e-5\nC = 1.2e-5\nmass = 0.06\nlength = 0.025\ntip_radius = 5e-4\n[table]\ncontact = "sliding"\nfriction = 0.3\nair_density = 1.2\n' > thin-air.toml
 check "air density without air" refuse table.air_density simulate --config thin-air.toml

@@ -285,6 +285,7 @@
     return v !== undefined && unit === "deg" ? v * degree : v;
   }
   const section = (c, name) => (isObject(c[name]) ? c[name] : {});
+  const givenMaterials = {};  // a start's materials given by modulus and Poisson's ratio ("tip_" and "")
   const shown = (v) => (v === undefined || v === null ? "" : v);
   // The inputs at a configuration (never throws: a value the form cannot hold is shown as text
   // and refused by the core with the command line's message).
@@ -306,8 +307,21 @@
     for (const k of dampingKeys) $(k).value = shown(damping[k] ?? 0);
     $("contact").value = ["frictionless", "rolling", "sliding"].includes(table.contact) ? table.contact : "pivot";
     $("table_friction").value = shown(table.friction);
-    $("friction_law").value = table.friction_law === "coulomb" ? "coulomb" : "viscous";
+    $("friction_law").value = ["coulomb", "contensou"].includes(table.friction_law) ? table.friction_law : "viscous";
     $("slip_speed").value = shown(table.slip_speed);
+    // A material by name, or given by its modulus and Poisson's ratio: kept as "as given".
+    for (const [id, key] of [["tip_material", "tip_"], ["table_material", ""]]) {
+      const select = $(id);
+      for (const o of [...select.options]) if (o.value === "given") o.remove();
+      givenMaterials[key] = undefined;
+      if (table[key + "modulus"] !== undefined) {
+        givenMaterials[key] = { modulus: table[key + "modulus"], poisson: table[key + "poisson"] };
+        select.add(new Option(`as given (E = ${table[key + "modulus"]} Pa)`, "given"));
+        select.value = "given";
+      } else if (typeof table[key + "material"] === "string") select.value = table[key + "material"];
+    }
+    $("rolling_resistance").value = shown(table.rolling_resistance);
+    $("air").checked = table.air === true;
     showTable();
     if (options) for (const k of answerKeys) $(k).value = shown(options[k]);
   }
@@ -337,6 +351,9 @@
     const sliding = $("contact").value === "sliding";
     $("sliding-fields").classList.toggle("hidden", !sliding);
     for (const e of document.querySelectorAll(".viscous-field")) e.classList.toggle("hidden", $("friction_law").value !== "viscous");
+    for (const e of document.querySelectorAll(".contensou-field")) e.classList.toggle("hidden", $("friction_law").value !== "contensou");
+    for (const e of document.querySelectorAll(".rolling-field")) e.classList.toggle("hidden", $("friction_law").value === "coulomb");
+    $("air-field").classList.toggle("hidden", $("contact").value === "pivot");
   }
   const num = (id) => ($(id).value.trim() === "" ? undefined : Number($(id).value));
   // The configuration the inputs describe (an empty field is left out: the core says what is
@@ -373,6 +390,20 @@
         set(c.table, "friction", num("table_friction"));
         c.table.friction_law = $("friction_law").value;
         if (c.table.friction_law === "viscous") set(c.table, "slip_speed", num("slip_speed"));
+        if (c.table.friction_law === "contensou")
+          for (const [id, key] of [["tip_material", "tip_"], ["table_material", ""]]) {
+            const given = $(id).value === "given" && givenMaterials[key];
+            if (given) {
+              c.table[key + "modulus"] = given.modulus;
+              c.table[key + "poisson"] = given.poisson;
+            } else c.table[key + "material"] = $(id).value;
+          }
+        if (c.table.friction_law !== "coulomb") set(c.table, "rolling_resistance", num("rolling_resistance"));
+      }
+      if ($("air").checked) {
+        c.table.air = true;
+        const start = section(initial, "table");  // the start's air, which the form does not show
+        for (const k of ["air_density", "air_viscosity"]) if (start[k] !== undefined) c.table[k] = start[k];
       }
     }
     return c;
@@ -696,9 +727,10 @@
       for (const f of e.dataTransfer.files) take(f);
     });
     $("mesh-file").addEventListener("change", (e) => { for (const f of e.target.files) take(f); });
-    for (const id of [...bodyKeys, ...shapeKeys, "spin", ...motionKeys, ...dampingKeys, "table_friction", "slip_speed", ...answerKeys])
+    for (const id of [...bodyKeys, ...shapeKeys, "spin", ...motionKeys, ...dampingKeys, "table_friction", "slip_speed",
+                      "rolling_resistance", ...answerKeys])
       $(id).addEventListener("input", () => schedule(true));
-    for (const id of ["driven", "contact", "friction_law"])
+    for (const id of ["driven", "contact", "friction_law", "tip_material", "table_material", "air"])
       $(id).addEventListener("change", () => { showTable(); schedule(true); });
     $("spin-unit").addEventListener("change", () => {
       const v = Number($("spin").value);
