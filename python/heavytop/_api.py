@@ -87,7 +87,24 @@ def stability(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[fl
 
     Bad input raises InvalidInput (a ValueError): "motion.spin: must be a finite number",
     "body.tip_radius: must be >= 0 (m)", "damping.axial: ..." (on a table).
+
+    Given an array of spins (spin=np.linspace(100, 300, 21), or spin_rpm=[...]), it answers each
+    and returns a pandas DataFrame, one row per spin in the given order: spin (rad/s), spin_rpm,
+    verdict, proven, max_tilt (rad), falls_at (s or NaN), min_spin (rad/s or NaN) from each
+    answer, and critical_spin (rad/s or NaN: the linearized model's; on a table the upright
+    state's), each row the scalar call's.
     """
+    spins = spin if spin_rpm is None else spin_rpm
+    if spins is not None and not np.isscalar(spins):
+        rows = []
+        for value in np.asarray(spins, dtype=float).ravel():
+            one = {"spin": float(value)} if spin_rpm is None else {"spin_rpm": float(value)}
+            rows.append(_stability_row(stability(body, **one, theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                                                 phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt,
+                                                 lifetime_horizon=lifetime_horizon, table=table)))
+        import pandas as pd
+        return pd.DataFrame(rows, columns=["spin", "spin_rpm", "verdict", "proven", "max_tilt", "falls_at", "min_spin",
+                                           "critical_spin"])
     data, words = _core.stability(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
                                   phi_rate0=phi_rate0, horizon=horizon, max_tilt=max_tilt,
                                   lifetime_horizon=lifetime_horizon, table=table)
@@ -482,6 +499,20 @@ def load(path: "os.PathLike[str] | str") -> Configuration:
     body, motion, options, given, from_parts, table = _core.load_configuration(path)
     return Configuration(path=path, body=body, motion=dict(motion), options=dict(options), given=tuple(given),
                          from_parts=bool(from_parts), table=table)
+
+
+def _stability_row(result: "Stability | TableAnalysis") -> Dict[str, Any]:
+    """One row of stability()'s frame: the answer's numbers and the critical spin (NaN for None)."""
+    data = result.to_dict()
+    answer = data["answer"]
+    nan = float("nan")
+    number = lambda x: nan if x is None else float(x)
+    critical = (data["table"]["upright"] or {}).get("critical_spin") if "table" in data \
+        else data["models"]["linearized"]["critical_spin"]
+    spin = float(data["spin"])
+    return {"spin": spin, "spin_rpm": spin * 30.0 / np.pi, "verdict": answer["verdict"], "proven": answer["proven"],
+            "max_tilt": number(answer["max_tilt"]), "falls_at": number(answer["falls_at"]),
+            "min_spin": number(answer["min_spin"]), "critical_spin": number(critical)}
 
 
 def _refuse_table(configuration: Configuration, command: str) -> None:
