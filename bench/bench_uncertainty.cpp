@@ -23,7 +23,7 @@ void ToyTopAnswerDraws(benchmark::State& state) {
     p = u.p_stays_up;
     benchmark::DoNotOptimize(p);
   }
-  state.counters["p_stays_up"] = p;
+  if (p != 1.0) state.SkipWithError("the toy top at 200 rad/s should stay up in every draw");
   state.counters["draws_per_s"] = benchmark::Counter(10000.0, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(ToyTopAnswerDraws)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
