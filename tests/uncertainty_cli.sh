@@ -95,5 +95,12 @@ if [ -n "${HEAVYTOP_BEFORE:-}" ] && [ -x "$HEAVYTOP_BEFORE" ]; then
       check "$example $format unchanged" cmp -s before.out after.out
     done
   done
+  for run in "stability --config $examples/tippe-top.toml --format json" \
+             "stability --config $examples/toy-top.toml --brief" \
+             "simulate --config $examples/toy-top.toml --model nonlinear --t-end 1 --samples 5 --format csv"; do
+    $H $run > after.out 2>&1
+    $HEAVYTOP_BEFORE $run > before.out 2>&1
+    check "$run unchanged" cmp -s before.out after.out
+  done
 fi
 finish

@@ -169,7 +169,9 @@ std::string uncertainty_sentence(const UncertaintyAnalysis& u) {
     const double value = rpm_from_rad_per_s(u.critical_spin->value);
     const double expanded = rpm_from_rad_per_s(1.96 * u.critical_spin->standard_uncertainty);
     const int decimals = expanded > 0.0 ? std::max(0, 1 - static_cast<int>(std::floor(std::log10(expanded)))) : 0;
-    critical = fmt::format("the critical spin is {:.{}f} +- {:.{}f} rpm (95 %)", value, decimals, expanded, decimals);
+    critical = expanded > 0.0 ? fmt::format("the critical spin is {:.{}f} +- {:.{}f} rpm (95 %)", value, decimals,
+                                            expanded, decimals)
+                              : fmt::format("the critical spin is {:.0f} rpm (no uncertain input moves it)", value);
   }
   return fmt::format("With these uncertainties it stays up with probability {}; {}.", p, critical);
 }
