@@ -150,6 +150,45 @@ TEST(Uncertainty, StaysUpProbabilityFollowsTheNormalLawOfTheSpin) {
   EXPECT_EQ(u.critical_spin->standard_uncertainty, 0.0);
 }
 
+// Below the critical spin every draw falls: p_stays_up is 0 with Clopper-Pearson's closed form at
+// k = 0, [0, 1 - (0.025)^(1/n)]; the fall times are those of the nonlinear runs, the nominal
+// body's own fall (analyse_top, the answer of SPEC 14) inside their interval.
+TEST(Uncertainty, BelowTheCriticalSpinEveryDrawFalls) {
+  const Body b = toy();
+  InitialState s = toy_motion();
+  s.spin = 100.0;
+  UncertaintyOptions o;
+  o.inputs["spin"] = {0.02, true};
+  o.draws = 200;
+  AnswerOptions answer;
+  answer.horizon = 20.0;
+  const UncertaintyAnalysis u = analyse_uncertainty(b, s, o, answer);
+  EXPECT_EQ(u.p_stays_up, 0.0);
+  EXPECT_EQ(u.p_stays_up_lo, 0.0);
+  EXPECT_NEAR(u.p_stays_up_hi, 1.0 - std::pow(0.025, 1.0 / 200.0), 1e-12);
+  ASSERT_TRUE(u.falls_at);
+  EXPECT_EQ(u.falls_at->fraction, 1.0);
+  const TopAnalysis nominal = analyse_top(b, s, answer);
+  ASSERT_TRUE(nominal.answer.falls_at);
+  EXPECT_LT(u.falls_at->lo, *nominal.answer.falls_at);
+  EXPECT_GT(u.falls_at->hi, *nominal.answer.falls_at);
+  ASSERT_TRUE(u.max_tilt);
+  EXPECT_NEAR(u.max_tilt->value, answer.max_tilt, 1e-9);  // every run stops at the fall's tilt
+}
+
+// A uniform input of half-width a has the standard uncertainty a / sqrt(3) (JCGM 100 4.3.7).
+TEST(Uncertainty, UniformInputsEnterWithTheirStandardUncertainty) {
+  const Body b = toy();
+  UncertaintyOptions o;
+  o.distribution = UncertaintyDistribution::Uniform;
+  o.inputs["mass"] = {0.003, false};  // 3 g of 60 g
+  o.draws = 100;
+  const UncertaintyAnalysis u = analyse_uncertainty(b, toy_motion(), o);
+  const double wc = closed_form(b);
+  ASSERT_TRUE(u.critical_linear);
+  EXPECT_NEAR(u.critical_linear->standard_uncertainty, wc / (2 * b.mass) * 0.003 / std::sqrt(3.0), 1e-12 * wc);
+}
+
 // The draws are a function of (seed, index): the same seed gives the same result on one thread
 // or two; another seed other draws.
 TEST(Uncertainty, ReproducibleAndIndependentOfThreads) {

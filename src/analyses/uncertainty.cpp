@@ -286,7 +286,7 @@ void evaluate(std::vector<DrawRecord>& records, std::int64_t first, std::int64_t
   std::atomic<std::int64_t> next{first};
   std::exception_ptr failure;
   std::once_flag failed;
-  constexpr std::int64_t kBlock = 32;
+  constexpr std::int64_t kBlock = 8;  // small: an unproven draw is a nonlinear run, thousands of times a proven one
   auto work = [&] {
     for (std::int64_t lo; (lo = next.fetch_add(kBlock)) < last;) {
       for (std::int64_t i = lo; i < std::min(last, lo + kBlock); ++i) {
