@@ -45,6 +45,7 @@ int run(int argc, char** argv) {
       {"body", cli::add_body_command},             {"precession", cli::add_precession_command},
       {"fit-decay", cli::add_fit_decay_command},
       {"explore", cli::add_explore_command},
+      {"chaos", cli::add_chaos_command},
   };
   const bool one = std::any_of(std::begin(kCommands), std::end(kCommands),
                                [&](const auto& c) { return c.first == first; });

@@ -26,5 +26,6 @@ Action add_body_command(CLI::App& app);
 Action add_precession_command(CLI::App& app);
 Action add_fit_decay_command(CLI::App& app);
 Action add_explore_command(CLI::App& app);
+Action add_chaos_command(CLI::App& app);
 
 }  // namespace heavytop::cli

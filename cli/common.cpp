@@ -230,8 +230,18 @@ Inputs::Inputs(CLI::App& command, std::vector<std::string> formats, InputUses us
                       "pivot (O fixed), or the body on a table: frictionless, rolling or sliding", "pivot");
     number(t.friction, "--table-friction", "mu, the table's friction coefficient (sliding; >= 0)", "Table");
     t.friction_law = named(t.friction_law_value, "--friction-law",
-                           "sliding: viscous (F = -mu N v / slip_speed) or coulomb", "viscous");
+                           "sliding: viscous (F = -mu N v / slip_speed), coulomb, or contensou (Coulomb over the "
+                           "tip's Hertz patch, with its drilling torque)", "viscous");
     number(t.slip_speed, "--slip-speed", "m/s, the viscous law's reference speed (> 0, default 1)", "Table");
+    const std::string materials = material_names();
+    t.tip_material = named(t.tip_material_value, "--tip-material",
+                           ("contensou: the tip's material, " + materials).c_str(), "");
+    t.material = named(t.material_value, "--table-material", ("contensou: the table's material, " + materials).c_str(), "");
+    number(t.rolling_resistance, "--rolling-resistance", "m, sliding: the rolling resistance's length (>= 0, default 0)",
+           "Table");
+    t.air = command.add_flag("--air")
+                ->description("on a table: the still air's torque against the spin (20 C, 1 atm)")
+                ->group("Table");
   }
   command.add_option("--format", format_, "output format")
       ->check(CLI::IsMember(formats))
@@ -367,6 +377,10 @@ Table Inputs::resolve_table(Body& body) const {
     if (t.friction_law->count()) merged.settings["table.friction_law"] = t.friction_law_value;
     if (t.friction.option->count()) merged.settings["table.friction"] = t.friction.value;
     if (t.slip_speed.option->count()) merged.settings["table.slip_speed"] = t.slip_speed.value;
+    if (t.tip_material->count()) merged.settings["table.tip_material"] = t.tip_material_value;
+    if (t.material->count()) merged.settings["table.material"] = t.material_value;
+    if (t.rolling_resistance.option->count()) merged.settings["table.rolling_resistance"] = t.rolling_resistance.value;
+    if (t.air->count()) merged.settings["table.air"] = true;
     if (t.tip_radius.option->count()) body.tip_radius = t.tip_radius.value;
     if (t.rim_radius.option->count()) body.rim_radius = t.rim_radius.value;
   }

@@ -167,7 +167,9 @@ class Inputs {
     std::string contact_value;
     CLI::Option* friction_law = nullptr;
     std::string friction_law_value;
-    Override friction, slip_speed, tip_radius, rim_radius;
+    CLI::Option *tip_material = nullptr, *material = nullptr, *air = nullptr;
+    std::string tip_material_value, material_value;
+    Override friction, slip_speed, tip_radius, rim_radius, rolling_resistance;
   };
   TableOptions table_options_;
   Table table_;

@@ -10,6 +10,7 @@
 #include "common.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/lifetime.hpp"
+#include "heavytop/table.hpp"
 
 namespace heavytop::cli {
 
@@ -17,7 +18,9 @@ Action add_lifetime_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "lifetime", "How long the top stays up: its spin's decay to the critical spin and the fall of the "
                   "damped nonlinear body");
-  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"});
+  InputUses uses;
+  uses.table = true;  // on a table: the spin-down by the body's own losses, then the motion
+  auto inputs = std::make_shared<Inputs>(*cmd, std::vector<std::string>{"text", "json"}, uses);
   auto options = std::make_shared<LifetimeOptions>();
   auto horizon = std::make_shared<double>(0.0);
   auto* horizon_option = cmd->add_option("--horizon", *horizon,
@@ -40,6 +43,15 @@ Action add_lifetime_command(CLI::App& app) {
     max_tilt_deg->apply(o.max_tilt);
     if (horizon_option->count()) o.horizon = *horizon;
     validate(o);
+    if (const Table& table = inputs->table(); table.on_table()) {
+      AnswerOptions a;
+      a.max_tilt = o.max_tilt;
+      a.integrator = o.integrator;
+      const TableLifetime life = table_lifetime(inputs->body(), table, inputs->state(), o.horizon, a);
+      write_output(inputs->output(), inputs->format() == "json" ? io::table_lifetime_json(life)
+                                                                : io::table_lifetime_text(life, table));
+      return;
+    }
     const Lifetime life = [&] {
       ProgressBar bar("lifetime", spin_decay(inputs->body(), inputs->state(), o).horizon);
       return lifetime(inputs->body(), inputs->state(), o, [&bar](double t) { bar.update(t); });

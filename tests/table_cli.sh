@@ -83,7 +83,52 @@ check "the two agree to 1e-7 rad" python3 -c "
 import json, sys
 a, b = (json.load(open(f)) for f in ('stiff-auto.json', 'stiff-dop853.json'))
 sys.exit(0 if max(abs(x - y) for x, y in zip(a['tilt'], b['tilt'])) < 1e-7 else 1)"
-check "lifetime on a table" refuse table.contact lifetime --config "$examples/tippe-top.toml"
+# The body's own losses (docs/table.md): Contensou's law over Hertz's patch, the air on the
+# parts, rolling resistance. The energy the loss columns book is the energy the body lost.
+"$H" simulate --config "$examples/wooden-top-on-table.toml" --rolling-resistance 1e-4 --t-end 1 --samples 11 > losses.csv
+check "loss columns" [ "$(head -1 losses.csv | cut -d, -f17-)" = "loss_sliding,loss_drilling,loss_rolling,loss_air" ]
+check "the losses booked are the energy lost" python3 -c "
+import csv
+rows = list(csv.DictReader(open('losses.csv')))
+e0 = float(rows[0]['energy'])
+for r in rows[1:]:
+    lost = e0 - float(r['energy'])
+    booked = sum(float(r[k]) for k in ('loss_sliding', 'loss_drilling', 'loss_rolling', 'loss_air'))
+    assert lost > 0 and abs(booked - lost) < 1e-6 * lost, (lost, booked)
+assert all(float(rows[-1][k]) > 0 for k in ('loss_drilling', 'loss_rolling', 'loss_air'))"
+"$H" stability --config "$examples/wooden-top-on-table.toml" --horizon 2 --format json > wooden.json
+check "the spin-down takes the kinetic energy between the spins" python3 -c "
+import json, math
+d = json.load(open('wooden.json'))
+s, C = d['answer']['table']['spin_down'], d['body']['C']
+w0, wc = 3000 * math.pi / 30, s['critical_spin']
+assert abs(wc - d['table']['upright']['critical_spin']) < 1e-9 * wc
+assert 40 < s['time_to_critical'] < 60 and s['losses']['air'] > s['losses']['drilling'] > 0, s
+taken = s['losses']['drilling'] + s['losses']['air']
+assert abs(taken - 0.5 * C * (w0 ** 2 - wc ** 2)) < 1e-9 * taken, (taken, 0.5 * C * (w0 ** 2 - wc ** 2))"
+check "spin-down in words" bash -c "'$H' stability --config '$examples/wooden-top-on-table.toml' --horizon 2 | head -1 | grep -q 'Asleep on this table it spins about 51.31 s before its spin falls to the critical 160.2 rad/s (1530 rpm)'"
+# Without the drilling torque's spin-down read as a growth, the critical spin does not depend on mu.
+check "critical spin free of mu" python3 -c "
+import json, subprocess
+w = [json.loads(subprocess.run(['$H', 'stability', '--config', '$examples/wooden-top-on-table.toml', '--table-friction', mu,
+     '--horizon', '0.01', '--format', 'json'], capture_output=True, text=True).stdout)['table']['upright']['critical_spin']
+     for mu in ('0.03', '0.3')]
+assert abs(w[0] - w[1]) < 1e-3 * w[0], w"
+check "contensou needs materials" refuse table.tip_material simulate --config "$examples/tippe-top.toml" --friction-law contensou
+check "unknown material" refuse table.material simulate --config "$examples/tippe-top.toml" --friction-law contensou --tip-material abs --table-material granite
+check "contensou needs a round tip" refuse body.tip_radius simulate --contact sliding --friction-law contensou --tip-material steel --table-material oak
+check "air on a pivot" refuse table.air simulate --air
+check "rolling resistance under coulomb" refuse table.rolling_resistance simulate --config "$examples/tippe-top.toml" --friction-law coulomb --rolling-resistance 1e-4
+printf '[body]\nA = 4.35e-5\nB = 4.35e-5\nC = 1.2e-5\nmass = 0.06\nlength = 0.025\ntip_radius = 5e-4\n[table]\ncontact = "sliding"\nfriction = 0.3\nair_density = 1.2\n' > thin-air.toml
+check "air density without air" refuse table.air_density simulate --config thin-air.toml
+# lifetime on a table: SPEC 8's keys from the spin-down asleep, and the motion over the horizon.
+"$H" lifetime --config "$examples/wooden-top-on-table.toml" --horizon 2 --format json > wooden-life.json
+check "lifetime on a table" python3 -c "
+import json
+life, s = json.load(open('wooden-life.json')), json.load(open('wooden.json'))['answer']['table']['spin_down']
+assert life['spin_decay']['time_to_critical'] == s['time_to_critical'] and life['table']['spin_down'] == s, (life, s)
+assert life['fall']['time'] is None and life['horizon'] == 2 and life['table']['verdict'] == 'stays up for the horizon'"
+check "lifetime on a table falls" bash -c "'$H' lifetime --config '$examples/rising-top.toml' --spin 100 | head -1 | grep -q '^Falls after'"
 check "damping on a table" refuse damping.axial simulate --contact sliding --axial-damping 1e-6
 check "unknown law" refuse table.friction_law simulate --contact sliding --friction-law dry
 check "flat rim" refuse motion.theta0 simulate --contact rolling --rim-radius 0.01 --theta0 0

@@ -30,6 +30,7 @@
 #include "heavytop/lagrange_exact.hpp"  // the symmetric top's motion in closed form
 #include "heavytop/compare.hpp"         // the models against each other
 #include "heavytop/lifetime.hpp"        // how long a damped top stays up (SPEC section 8)
+#include "heavytop/chaos.hpp"           // Lyapunov exponents, MEGNO, the Poincare section (SPEC section 17)
 #include "heavytop/sweep.hpp"           // sweeps across machines
 #include "heavytop/simulate.hpp"        // simulate(Model, ...): one entry point for every model
 #include "heavytop/rigid_body.hpp"      // RigidBodySystem for odeint-style steppers

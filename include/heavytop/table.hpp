@@ -16,6 +16,7 @@
 
 #include "heavytop/answer.hpp"
 #include "heavytop/body.hpp"
+#include "heavytop/contact_losses.hpp"
 #include "heavytop/nonlinear.hpp"
 #include "heavytop/progress.hpp"
 #include "heavytop/simulate.hpp"
@@ -35,13 +36,18 @@ enum class Contact {
 enum class FrictionLaw {
   Viscous,  ///< "viscous": F = -mu N v_P / slip_speed (Cohen 1977 with slip_speed 1 m/s)
   Coulomb,  ///< "coulomb": the set-valued law (stick while |F| <= mu N, slip against the slip)
+  /// "contensou": Coulomb's law over Hertz's contact patch of the tip's sphere, the friction
+  /// force and the drilling torque coupled (F = -mu N v / D, M = -mu N eps^2 w_n / D,
+  /// D = |(v, eps w_n)|, eps = (3 pi / 16) a; Leine and Glocker 2003): the spinning patch slides
+  /// easily, so the law acts as the viscous one with slip_speed eps |w_n| (docs/table.md)
+  Contensou,
 };
 
 std::string_view name(Contact contact);
 std::string_view name(FrictionLaw law);
 /// The contact called `name` ("pivot", "frictionless", "rolling", "sliding"), or nullopt.
 std::optional<Contact> contact_from_name(std::string_view name);
-/// The law called `name` ("viscous", "coulomb"), or nullopt.
+/// The law called `name` ("viscous", "coulomb", "contensou"), or nullopt.
 std::optional<FrictionLaw> friction_law_from_name(std::string_view name);
 
 /// The table under the body (SPEC section 16's `[table]`); the default is the pivot.
@@ -50,23 +56,53 @@ struct Table {
   double friction = 0.0;                        ///< mu (dimensionless, >= 0): Sliding only
   FrictionLaw friction_law = FrictionLaw::Viscous;
   double slip_speed = 1.0;                      ///< m/s (> 0): the viscous law's reference speed
+  /// The tip's and the table's materials (Hertz's patch): FrictionLaw::Contensou needs both.
+  std::optional<Material> tip_material, material;
+  /// m (>= 0): the rolling resistance's length delta (Sliding, not Coulomb): a torque
+  /// -delta N w_r / |w_r| against the body's rolling, w_r its angular velocity along the table
+  /// (regularised below 1e-3 rad/s); 0: none.
+  double rolling_resistance = 0.0;
+  /// Still air around the body (any contact but the pivot): its torque against the spin about
+  /// the axis, from air_surfaces; nullopt: none.
+  std::optional<Air> air;
+  /// The surfaces the air drags on (air_surfaces() of the body's parts); empty: the body's
+  /// equivalent_disc().
+  std::vector<AirSurface> air_surfaces;
 
   /// True for every contact but the pivot.
   bool on_table() const noexcept { return contact != Contact::Pivot; }
+  /// True if the contact dissipates by the body's own losses (Contensou's law, rolling
+  /// resistance or the air), which the runs then account for (TableSummary::losses).
+  bool has_losses() const noexcept {
+    return friction_law == FrictionLaw::Contensou || rolling_resistance > 0.0 || air.has_value();
+  }
   /// True if every setting is in range; else false with "key: rule" in `why` (keys
   /// "table.friction", "table.slip_speed").
   bool IsValid(std::string* why) const;
 };
 
 /// Throws InvalidInput for the first rule `table` breaks: "table.friction" finite and >= 0,
-/// "table.slip_speed" finite and > 0.
+/// "table.slip_speed" finite and > 0; "table.tip_material" and "table.material" given (moduli
+/// finite and > 0, Poisson's ratios in [0, 0.5)) for Contensou's law; "table.rolling_resistance"
+/// finite and >= 0, and 0 but for sliding under the viscous or Contensou law;
+/// "table.air_density", "table.air_viscosity" finite and > 0.
 void validate(const Table& table);
 
 /// validate(table) and validate(body), then, on a table,
 /// for what the body cannot do there: a general body (SPEC section 11; key its first nonzero
-/// term), a damped one (key "damping.*": the table's own losses are its contact's), and a
+/// term), a damped one (key "damping.*": the table's own losses are its contact's), Contensou's
+/// law without a round tip (key "body.tip_radius": > 0, and no rim), and a
 /// rim whose axis starts exactly vertical is checked by simulate_on_table (key "motion.theta0").
 void validate(const Table& table, const Body& body);
+
+/// J: the energy each of the contact's losses has taken, from the run's start (each >= 0).
+struct TableLosses {
+  double sliding = 0.0;   ///< the friction force's work against the slip at P
+  double drilling = 0.0;  ///< Contensou's drilling torque's against the spin about the vertical
+  double rolling = 0.0;   ///< the rolling resistance's
+  double air = 0.0;       ///< the air's torque's against the spin about the axis
+  double total() const noexcept { return sliding + drilling + rolling + air; }
+};
 
 /// What a run on the table did and how it ended.
 struct TableSummary {
@@ -86,6 +122,9 @@ struct TableSummary {
   double max_relative_energy_drift = 0.0;
   double max_relative_jellett_drift = 0.0;
   double max_relative_vertical_momentum_drift = 0.0;
+  /// Where the energy went (Table::has_losses() only; else zero): each loss's power integrated
+  /// over every accepted step (Gauss-Legendre, 5 points, on the dense output), to the end.
+  TableLosses losses;
 };
 
 /// The columns a table trajectory has after SPEC's seven (t, theta, phi, theta_rate, phi_rate,
@@ -94,6 +133,9 @@ struct TableSummary {
 /// (kg m^3/s: -L_G . (P - G)); then vertical_momentum (kg m^2/s: L_G . e_zeta).
 inline constexpr std::string_view kTableColumns[] = {"x",    "y",      "height", "normal_force", "slip_speed",
                                                      "spin", "energy", "jellett", "vertical_momentum"};
+/// The columns after kTableColumns of a table with losses (Table::has_losses()): J, the energy
+/// each loss has taken since t = 0 (TableLosses).
+inline constexpr std::string_view kLossColumns[] = {"loss_sliding", "loss_drilling", "loss_rolling", "loss_air"};
 
 /// A run on the table.
 struct TableRun {
@@ -163,6 +205,24 @@ TableStability table_stability(const Body& body, const Table& table, double spin
 /// inverted state, as table_stability() computes them.
 std::vector<std::complex<double>> table_eigenvalues(const Body& body, const Table& table, double spin, bool inverted);
 
+/// How a top asleep upright on the table (tilt 0, its tip not slipping) spins down under its
+/// own losses (Table::has_losses()): C w' = -(M_drilling + M_air(w)), M_drilling = mu m g
+/// (3 pi / 16) a with Hertz's patch a at N = m g (Contensou's law, asleep: pure drilling), M_air
+/// the air's torque on its surfaces; rolling resistance and sliding take nothing while it
+/// sleeps. The time from `spin` to the critical spin is that law's quadrature (Gauss-Kronrod).
+struct TableSpinDown {
+  std::optional<double> critical_spin;     ///< rad/s, the upright state's on this table (table_stability)
+  std::optional<double> time_to_critical;  ///< s, 0 if at or below it; nullopt if never (no loss, no critical spin)
+  double patch_radius = 0.0;               ///< m, Hertz's a at N = m g (0 without Contensou's law)
+  double drilling_torque = 0.0;            ///< N m, M_drilling (0 without Contensou's law)
+  double air_torque = 0.0;                 ///< N m, M_air at `spin` (0 without air)
+  TableLosses losses;                      ///< J, what each loss takes from `spin` to the critical spin
+};
+
+/// The spin-down of `body` asleep on `table` from `spin` (rad/s, > 0). Throws InvalidInput as
+/// validate(table, body).
+TableSpinDown table_spin_down(const Body& body, const Table& table, double spin);
+
 /// The tilt (rad) below which a top on a table counts as upright and asleep (SPEC 16's
 /// `upright_at`), and within which of pi a turned-over body counts as upside down.
 inline constexpr double kSleepingTilt = 0.01;
@@ -199,6 +259,8 @@ struct TableAnswer {
   /// The upright state is asymptotically stable at the run's final spin (with upright_at: the
   /// top has risen to a state that attracts its neighbourhood; Lyapunov's first method).
   bool upright_attracts = false;
+  /// With the body's own losses (Table::has_losses()): how long it spins asleep (table_spin_down).
+  std::optional<TableSpinDown> spin_down;
 };
 
 /// Everything `stability` says on a table, computed once.
@@ -214,5 +276,21 @@ struct TableAnalysis {
 /// dense output to 1e-9 s. Throws InvalidInput for bad input, std::runtime_error for a failed run.
 TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const InitialState& initial,
                                    const AnswerOptions& options = {});
+
+/// How long a top stays up on the table (SPEC section 8's `lifetime`, on a table): its spin-down
+/// asleep (table_spin_down) and, from the given start, the computed motion's fall.
+struct TableLifetime {
+  TableSpinDown spin_down;
+  /// s, the run's horizon: the options' or, by default, 1.5 times the time to the critical spin
+  /// and at least 10 s (when that is null: AnswerOptions' default horizon)
+  double horizon = 0.0;
+  TableAnswer answer;  ///< the motion over the horizon (falls_at, final_spin, max_tilt, ...)
+};
+
+/// The lifetime of `body` on `table` from `initial` (spin > 0): table_spin_down() and
+/// analyse_top_on_table()'s motion over `horizon` (nullopt: TableLifetime::horizon's default)
+/// with `options`' limit, tolerances and step budget. Throws as those do.
+TableLifetime table_lifetime(const Body& body, const Table& table, const InitialState& initial,
+                             std::optional<double> horizon, const AnswerOptions& options = {});
 
 }  // namespace heavytop

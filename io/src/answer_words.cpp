@@ -184,7 +184,10 @@ std::string contact_words(const Table& t) {
     case Contact::Rolling: return "rolling on a table without slipping";
     case Contact::Sliding:
       return fmt::format("on a table with {} friction (mu = {:g}{})",
-                         t.friction_law == FrictionLaw::Viscous ? "viscous" : "Coulomb", t.friction,
+                         t.friction_law == FrictionLaw::Viscous   ? "viscous"
+                         : t.friction_law == FrictionLaw::Coulomb ? "Coulomb"
+                                                                  : "Coulomb-Contensou",
+                         t.friction,
                          t.friction_law == FrictionLaw::Viscous ? fmt::format(", slip speed {:g} m/s", t.slip_speed)
                                                                 : std::string());
     case Contact::Pivot: break;
@@ -243,8 +246,30 @@ std::string table_answer_reason(const TableAnswer& a, const Table& table) {
                      start, time_words(a.horizon), angle_words(a.max_tilt));
 }
 
+std::string table_spin_down_words(const TableSpinDown& d, const Table& table) {
+  if (!d.critical_spin) return "";
+  if (!d.time_to_critical)
+    return fmt::format(" Asleep on this table, nothing of what is modelled slows its spin above the critical {}.",
+                       spin_words(*d.critical_spin));
+  if (*d.time_to_critical == 0.0)
+    return fmt::format(" Its spin is already at or below the critical {} on this table.", spin_words(*d.critical_spin));
+  const double total = d.losses.total();
+  std::vector<std::string> shares;
+  if (d.losses.drilling > 0.0)
+    shares.push_back(fmt::format("{:.0f} % to the tip's drilling friction (Hertz's patch {:.2g} mm across)",
+                                 100.0 * d.losses.drilling / total, 2e3 * d.patch_radius));
+  if (d.losses.air > 0.0) shares.push_back(fmt::format("{:.0f} % to the air", 100.0 * d.losses.air / total));
+  std::string said;
+  for (std::size_t i = 0; i < shares.size(); ++i) said += (i == 0 ? "" : i + 1 == shares.size() ? " and " : ", ") + shares[i];
+  return fmt::format(" Asleep on this table it spins about {} before its spin falls to the critical {}: its energy "
+                     "goes {}{} (estimates from its shape and materials: docs/table.md).",
+                     time_words(*d.time_to_critical), spin_words(*d.critical_spin), said,
+                     table.rolling_resistance > 0.0 ? "; rolling resistance takes nothing while it sleeps" : "");
+}
+
 std::string table_answer_text(const TableAnswer& a, const Table& table) {
   std::string text = table_answer_headline(a) + " " + table_answer_reason(a, table);
+  if (a.spin_down) text += table_spin_down_words(*a.spin_down, table);
   text += fmt::format(" Its contact point wandered up to {:.3g} m from where it started.", a.track);
   if (a.min_spin)
     text += fmt::format(" On this table the upright spin is stable from {} up.", spin_words(*a.min_spin));

@@ -195,7 +195,8 @@ double* config_field(Body& body, InitialState& state, std::string_view key) {
 const std::map<std::string, std::vector<std::string>>& command_sections() {
   static const std::map<std::string, std::vector<std::string>> sections = {
       {"simulate", {"model", "t_end", "samples", "method", "rtol", "atol", "integrator", "step", "order"}},
-      {"table", {"contact", "friction", "friction_law", "slip_speed"}},
+      {"table", {"contact", "friction", "friction_law", "slip_speed", "tip_material", "tip_modulus", "tip_poisson",
+                 "material", "modulus", "poisson", "rolling_resistance", "air", "air_density", "air_viscosity"}},
       // SPEC section 17: a standard uncertainty per body or motion key, and the draws' settings.
       {"uncertainty", {"A", "B", "C", "mass", "gravity", "length", "spin", "spin_rpm", "theta0", "phi0",
                        "theta_rate0", "phi_rate0", "distribution", "draws", "seed"}},
@@ -312,6 +313,31 @@ Configuration parse_configuration(std::string_view text, const std::string& sour
   return config;
 }
 
+namespace {
+
+// A material of the contact: by name from the common ones ("steel"), or by its modulus (Pa)
+// and Poisson's ratio; nullopt when none of the three keys is given.
+std::optional<Material> material_of(const Configuration& config, const std::string& named, const std::string& modulus,
+                                    const std::string& poisson) {
+  const auto name = config.string(named);
+  const auto E = config.number(modulus);
+  const auto nu = config.number(poisson);
+  if (name && (E || nu))
+    throw InvalidInput(E ? modulus : poisson, fmt::format("give {} or {} and {}, not both", named, modulus, poisson));
+  if (name) {
+    const auto known = material_from_name(*name);
+    if (!known)
+      throw InvalidInput(named, fmt::format("unknown material \"{}\": must be one of {} (or give {} and {})",
+                                            printable(*name), material_names(), modulus, poisson));
+    return known;
+  }
+  if (!E && !nu) return std::nullopt;
+  if (!E || !nu) throw InvalidInput(E ? poisson : modulus, fmt::format("is needed with {}", E ? modulus : poisson));
+  return Material{*E, *nu};
+}
+
+}  // namespace
+
 Table table_of(const Configuration& config) {
   Table table;
   if (const auto contact = config.string("table.contact")) {
@@ -321,14 +347,15 @@ Table table_of(const Configuration& config) {
                                                       "\"rolling\" or \"sliding\"", printable(*contact)));
     table.contact = *known;
   }
-  const char* others[] = {"table.friction", "table.friction_law", "table.slip_speed"};
   if (!table.on_table())
-    for (const char* key : others)
-      if (config.settings.count(key))
+    for (const auto& [key, value] : config.settings)
+      if (key.rfind("table.", 0) == 0 && key != "table.contact")
         throw InvalidInput(key, "applies to a body on a table only: set table.contact to \"frictionless\", "
                                 "\"rolling\" or \"sliding\" (the pivot holds O fixed)");
   if (table.contact != Contact::Sliding)
-    for (const char* key : {"table.friction", "table.friction_law"})
+    for (const char* key : {"table.friction", "table.friction_law", "table.rolling_resistance", "table.tip_material",
+                            "table.tip_modulus", "table.tip_poisson", "table.material", "table.modulus",
+                            "table.poisson"})
       if (table.on_table() && config.settings.count(key))
         throw InvalidInput(key, fmt::format("applies to table.contact = \"sliding\" only (here \"{}\")",
                                             name(table.contact)));
@@ -336,11 +363,44 @@ Table table_of(const Configuration& config) {
   if (const auto law = config.string("table.friction_law")) {
     const auto known = friction_law_from_name(*law);
     if (!known)
-      throw InvalidInput("table.friction_law",
-                         fmt::format("unknown law \"{}\": must be \"viscous\" or \"coulomb\"", printable(*law)));
+      throw InvalidInput("table.friction_law", fmt::format("unknown law \"{}\": must be \"viscous\", \"coulomb\" or "
+                                                           "\"contensou\"",
+                                                           printable(*law)));
     table.friction_law = *known;
   }
   if (const auto v = config.number("table.slip_speed")) table.slip_speed = *v;
+  table.tip_material = material_of(config, "table.tip_material", "table.tip_modulus", "table.tip_poisson");
+  table.material = material_of(config, "table.material", "table.modulus", "table.poisson");
+  if (table.friction_law != FrictionLaw::Contensou)
+    for (const char* key : {"table.tip_material", "table.tip_modulus", "table.tip_poisson", "table.material",
+                            "table.modulus", "table.poisson"})
+      if (config.settings.count(key))
+        throw InvalidInput(key, "applies to friction_law = \"contensou\" only (Hertz's contact patch)");
+  if (const auto delta = config.number("table.rolling_resistance")) table.rolling_resistance = *delta;
+  const auto density = config.number("table.air_density");
+  const auto viscosity = config.number("table.air_viscosity");
+  bool air = false;
+  if (config.settings.count("table.air")) {
+    const auto* flag = std::get_if<bool>(&config.settings.at("table.air"));
+    if (!flag) throw InvalidInput("table.air", "must be true or false");
+    air = *flag;
+  }
+  if ((density || viscosity) && !air)
+    throw InvalidInput(density ? "table.air_density" : "table.air_viscosity", "needs table.air = true");
+  if (air) {
+    table.air = Air{};
+    if (density) table.air->density = *density;
+    if (viscosity) table.air->viscosity = *viscosity;
+    // The parts' own surfaces; a body given by its moments, or with a mesh among its parts,
+    // is dragged as its equivalent disc (the core's default for no surfaces).
+    const bool solids = !config.parts.empty() &&
+                        std::none_of(config.parts.begin(), config.parts.end(), [](const PartSpec& p) { return p.mesh; });
+    if (solids) {
+      std::vector<SolidPart> parts;
+      for (const auto& p : config.parts) parts.push_back(p.solid);
+      table.air_surfaces = air_surfaces(parts);
+    }
+  }
   validate(table);
   return table;
 }

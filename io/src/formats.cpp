@@ -189,7 +189,32 @@ Json table_settings_json(const Body& body, const Table& table) {
   }
   t["tip_radius"] = body.tip_radius;
   t["rim_radius"] = body.rim_radius;
+  // The body's own losses (docs/contract.md), only where they act: earlier outputs stay as they were.
+  auto material = [](const std::optional<Material>& m) -> Json {
+    if (!m) return nullptr;
+    return {{"modulus", m->modulus}, {"poisson", m->poisson}};
+  };
+  if (table.friction_law == FrictionLaw::Contensou) {
+    t["tip_material"] = material(table.tip_material);
+    t["material"] = material(table.material);
+  }
+  if (table.rolling_resistance > 0.0) t["rolling_resistance"] = table.rolling_resistance;
+  if (table.air) t["air"] = {{"density", table.air->density}, {"viscosity", table.air->viscosity},
+                             {"surfaces", table.air_surfaces.empty() ? "equivalent disc" : "parts"}};
   return t;
+}
+
+Json losses_json(const TableLosses& l) {
+  return {{"sliding", l.sliding}, {"drilling", l.drilling}, {"rolling", l.rolling}, {"air", l.air}};
+}
+
+Json spin_down_json(const TableSpinDown& d) {
+  return {{"critical_spin", optional_number(d.critical_spin)},
+          {"time_to_critical", optional_number(d.time_to_critical)},
+          {"patch_radius", d.patch_radius},
+          {"drilling_torque", d.drilling_torque},
+          {"air_torque", d.air_torque},
+          {"losses", losses_json(d.losses)}};
 }
 
 Json spinning_state_json(const SpinningStateStability& s) {
@@ -230,6 +255,7 @@ std::string table_trajectory_json(const Body& body, const Table& table, const In
                     {"max_relative_energy_drift", m.max_relative_energy_drift},
                     {"max_relative_jellett_drift", m.max_relative_jellett_drift},
                     {"max_relative_vertical_momentum_drift", m.max_relative_vertical_momentum_drift}};
+  if (table.has_losses()) out["summary"]["losses"] = losses_json(m.losses);
   return out.dump() + "\n";
 }
 
@@ -251,6 +277,7 @@ std::string table_stability_json(const Body& body, const Table& table, const Tab
                      {"track", a.track},
                      {"final_tilt", a.final_tilt},
                      {"final_spin", a.final_spin}};
+  if (a.spin_down) answer["table"]["spin_down"] = spin_down_json(*a.spin_down);
   Json out = stability_object(body, analysis.spin, pivot_models, std::move(answer));
   Json t = table_settings_json(body, table);
   t["upright"] = spinning_state_json(analysis.stability.upright);
@@ -451,6 +478,30 @@ std::string lifetime_json(const Lifetime& life) {
                  {"max_tilt", life.max_tilt}};
   out["horizon"] = life.horizon;
   return out.dump(2) + "\n";
+}
+
+std::string table_lifetime_json(const TableLifetime& life) {
+  const TableAnswer& a = life.answer;
+  Json out;
+  out["spin_decay"] = {{"critical_spin", optional_number(life.spin_down.critical_spin)},
+                       {"time_to_critical", optional_number(life.spin_down.time_to_critical)}};
+  std::optional<double> fall_spin;
+  if (a.falls_at) fall_spin = a.final_spin;  // the run ends at the fall
+  out["fall"] = {{"time", optional_number(a.falls_at)}, {"spin", optional_number(fall_spin)},
+                 {"max_tilt", a.fall_threshold}};
+  out["horizon"] = a.horizon;
+  out["table"] = {{"verdict", std::string(name(a.verdict))}, {"spin_down", spin_down_json(life.spin_down)}};
+  return out.dump(2) + "\n";
+}
+
+std::string table_lifetime_text(const TableLifetime& life, const Table& table) {
+  const TableAnswer& a = life.answer;
+  std::string text = a.falls_at ? fmt::format("Falls after {:.4g} s (its tilt passes {:.3g} degrees).", *a.falls_at,
+                                              a.fall_threshold * 180.0 / M_PI)
+                                : table_answer_headline(a);
+  text += table_spin_down_words(life.spin_down, table);
+  text += "\n" + table_answer_reason(a, table) + "\n";
+  return text;
 }
 
 namespace {

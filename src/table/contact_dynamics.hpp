@@ -19,7 +19,9 @@
 #include <Eigen/Core>
 
 #include "heavytop/body.hpp"
+#include "heavytop/contact_losses.hpp"
 #include "heavytop/table.hpp"
+#include "table/air_drag.hpp"
 
 namespace heavytop::detail {
 
@@ -37,6 +39,12 @@ struct TableParameters {
   FrictionLaw law = FrictionLaw::Viscous;
   double friction = 0.0;               // mu
   double slip_speed = 1.0;             // m/s
+  double contact_modulus = 0.0;        // Pa: E* of the tip and the table (Contensou's law)
+  bool drilling = true;                // Contensou's law: its drilling torque acts (not in the linearisation)
+  double rolling_resistance = 0.0;     // m: the rolling resistance's length
+  bool air = false;                    // the air's torque on the spinning parts
+  Air air_properties;
+  std::vector<AirSurface> air_surfaces;
 
   static TableParameters of(const Body& body, const Table& table) {
     TableParameters p;
@@ -52,9 +60,27 @@ struct TableParameters {
     p.law = table.friction_law;
     p.friction = table.friction;
     p.slip_speed = table.slip_speed;
+    if (table.friction_law == FrictionLaw::Contensou)
+      p.contact_modulus = heavytop::contact_modulus(*table.tip_material, *table.material);
+    p.rolling_resistance = table.rolling_resistance;
+    p.air = table.air.has_value();
+    if (p.air) {
+      p.air_properties = *table.air;
+      p.air_surfaces = table.air_surfaces.empty() ? equivalent_disc(body) : table.air_surfaces;
+    }
     return p;
   }
+
+  /// True if the contact's own losses act (Table::has_losses()).
+  bool has_losses() const noexcept { return law == FrictionLaw::Contensou || rolling_resistance > 0.0 || air; }
 };
+
+// m/s: Contensou's law is regularised below this speed of the patch (slip and drilling
+// together): a spinning or sliding top never comes near it; a top at rest does.
+inline constexpr double kContensouRegularisation = 1e-6;
+// rad/s: the rolling resistance's torque grows linearly below this rolling rate (it is
+// set-valued at rest).
+inline constexpr double kRollingRegularisation = 1e-3;
 
 // abs-free sqrt that works for the complex step (the argument's real part is >= 0 here).
 inline double sqrt_of(double x) { return std::sqrt(x); }
@@ -130,6 +156,8 @@ struct ContactMotion {
   T normal;           // N: force . gamma
   T denominator;      // 1/kg: N's coefficient (> 0 unless Painleve's paradox); 1 / m for rolling
   Vec3<T> slip;       // m/s: the velocity of the body's material point at P
+  // N m: the pure torques of the patch's drilling friction, of rolling resistance and of the air
+  Vec3<T> drilling = Vec3<T>::Zero(), rolling = Vec3<T>::Zero(), air = Vec3<T>::Zero();
 };
 
 // The velocity of the material point at P (body axes), given G's velocity v.
@@ -138,24 +166,78 @@ Vec3<T> contact_point_velocity(const ContactGeometry<T>& g, const Vec3<T>& omega
   return v - cross(omega, g.s);
 }
 
-// The friction force per unit normal force (body axes), for the frictionless and viscous laws.
+// What the contact exerts per unit normal force (body axes): the friction force at P and the pure
+// torques of the patch's drilling friction and of rolling resistance.
 template <class T>
-Vec3<T> friction_per_normal(const TableParameters& p, const Vec3<T>& gamma, const Vec3<T>& slip) {
-  if (p.contact != Contact::Sliding || p.friction == 0.0) return Vec3<T>::Zero();
+struct FrictionPerNormal {
+  Vec3<T> force = Vec3<T>::Zero();     // dimensionless (N / N)
+  Vec3<T> drilling = Vec3<T>::Zero();  // m (N m / N)
+  Vec3<T> rolling = Vec3<T>::Zero();   // m (N m / N)
+};
+
+template <class T>
+T cube_root(const T& x) {
+  if constexpr (std::is_same_v<T, double>)
+    return std::cbrt(x);
+  else
+    return std::real(x) > 0.0 ? std::pow(x, 1.0 / 3.0) : T(0.0);
+}
+
+// m: Contensou's arm (3 pi / 16) a at normal force N, a Hertz's patch radius.
+template <class T>
+T drilling_arm(const TableParameters& p, const T& normal) {
+  if (!(std::real(normal) > 0.0)) return T(0.0);
+  return kHertzDrillingArm * cube_root(T(3.0 * p.tip_radius / (4.0 * p.contact_modulus) * normal));
+}
+
+// `normal` (N) matters to Contensou's law only: its patch grows as N^(1/3).
+template <class T>
+FrictionPerNormal<T> friction_per_normal(const TableParameters& p, const Vec3<T>& gamma, const Vec3<T>& omega,
+                                         const Vec3<T>& slip, const T& normal) {
+  FrictionPerNormal<T> f;
+  if (p.rolling_resistance > 0.0) {  // against the body's rolling: its angular velocity along the table
+    const Vec3<T> rolling = omega - dot(omega, gamma) * gamma;
+    const T size = sqrt_of(dot(rolling, rolling) + kRollingRegularisation * kRollingRegularisation);
+    f.rolling = (-p.rolling_resistance / size) * rolling;
+  }
+  if (p.contact != Contact::Sliding || p.friction == 0.0) return f;
   const Vec3<T> tangential = slip - dot(slip, gamma) * gamma;
   if (p.law == FrictionLaw::Coulomb) {  // slipping (the sticking contact's equations are rolling's)
     if constexpr (std::is_same_v<T, double>) {
       const double size = tangential.norm();
-      return size > 0.0 ? Vec3<T>((-p.friction / size) * tangential) : Vec3<T>::Zero();
+      if (size > 0.0) f.force = (-p.friction / size) * tangential;
     } else {  // |t| continued analytically (no conjugate), for the complex step
       const T size = sqrt_of(dot(tangential, tangential));
-      return std::real(size) > 0.0 ? Vec3<T>((-p.friction / size) * tangential) : Vec3<T>::Zero();
+      if (std::real(size) > 0.0) f.force = (-p.friction / size) * tangential;
     }
+  } else if (p.law == FrictionLaw::Contensou) {
+    // Coulomb's law over the patch, force and drilling torque coupled: (F, M / eps) on the
+    // ellipse of radius mu N, against (v, eps w_n) (Leine and Glocker 2003's approximation).
+    const T eps = drilling_arm(p, normal);
+    const T spin = dot(omega, gamma);
+    const T size = sqrt_of(dot(tangential, tangential) + eps * eps * spin * spin +
+                           kContensouRegularisation * kContensouRegularisation);
+    f.force = (-p.friction / size) * tangential;
+    if (p.drilling) f.drilling = (-p.friction * eps * eps * spin / size) * gamma;
+  } else {
+    f.force = (-p.friction / p.slip_speed) * tangential;
   }
-  return (-p.friction / p.slip_speed) * tangential;
+  return f;
 }
 
-// Frictionless and sliding (viscous): N from the height constraint z_G'' = f'' c'^2 + f' c''.
+// N m (body axes): the air's torque against the spin about the body's axis.
+template <class T>
+Vec3<T> air_torque_on(const TableParameters& p, const Vec3<T>& omega) {
+  Vec3<T> torque = Vec3<T>::Zero();
+  if (!p.air) return torque;
+  for (const auto& surface : p.air_surfaces) torque[2] -= air_torque_of(surface, p.air_properties, omega[2]);
+  return torque;
+}
+
+// Frictionless and sliding: N from the height constraint z_G'' = f'' c'^2 + f' c''. The
+// contact's force and torques are N times what friction_per_normal() gives, so N solves one
+// linear equation; under Contensou's law that depends on N through the patch (as N^(1/3), a
+// contraction), so the equation is solved again from its own N until N is still.
 // `v` is G's velocity in body axes (its vertical part f' c', as the constraint demands).
 template <class T>
 ContactMotion<T> sliding_motion(const TableParameters& p, const Vec3<T>& gamma, const Vec3<T>& omega,
@@ -163,19 +245,34 @@ ContactMotion<T> sliding_motion(const TableParameters& p, const Vec3<T>& gamma, 
   const ContactGeometry<T> g = contact_geometry(p, gamma);
   ContactMotion<T> m;
   m.slip = contact_point_velocity(g, omega, v);
-  const Vec3<T> phi = friction_per_normal(p, gamma, m.slip);
+  m.air = air_torque_on(p, omega);
   const Vec3<T> arm = -g.s;  // P - G
-  const Vec3<T> wdot0 = inertia_solve(p, Vec3<T>(-cross(omega, inertia_times(p, omega))));
-  const Vec3<T> wdot1 = inertia_solve(p, cross(arm, Vec3<T>(gamma + phi)));
+  const Vec3<T> wdot0 = inertia_solve(p, Vec3<T>(m.air - cross(omega, inertia_times(p, omega))));
   const Vec3<T> gamma_dot = cross(gamma, omega);
   const T c_dot = gamma_dot[2];
   // c'' = (gamma' x omega)_3 + (gamma x omega')_3, omega' = wdot0 + N wdot1.
   const T c_ddot0 = cross(gamma_dot, omega)[2] + cross(gamma, wdot0)[2];
-  const T c_ddot1 = cross(gamma, wdot1)[2];
-  m.denominator = 1.0 / p.mass - g.f1 * c_ddot1;
-  m.normal = (p.gravity + g.f2 * c_dot * c_dot + g.f1 * c_ddot0) / m.denominator;
+  T normal = T(p.mass * p.gravity);
+  FrictionPerNormal<T> f;
+  Vec3<T> wdot1;
+  // Contensou: passes until N changes by under 1e-14 of itself, then two more, which carry
+  // the complex step's derivative to the same accuracy (the contraction acts on it alike).
+  int settled = p.law == FrictionLaw::Contensou && p.contact == Contact::Sliding ? 0 : 2;
+  for (int pass = 0;; ++pass) {
+    f = friction_per_normal(p, gamma, omega, m.slip, normal);
+    wdot1 = inertia_solve(p, Vec3<T>(cross(arm, Vec3<T>(gamma + f.force)) + f.drilling + f.rolling));
+    const T c_ddot1 = cross(gamma, wdot1)[2];
+    m.denominator = 1.0 / p.mass - g.f1 * c_ddot1;
+    const T next = (p.gravity + g.f2 * c_dot * c_dot + g.f1 * c_ddot0) / m.denominator;
+    if (settled > 0 || std::abs(std::real(next - normal)) <= 1e-14 * std::abs(std::real(next))) ++settled;
+    normal = next;
+    if (settled > 2 || pass == 60) break;
+  }
+  m.normal = normal;
   m.omega_dot = wdot0 + m.normal * wdot1;
-  m.force = m.normal * (gamma + phi);
+  m.force = m.normal * (gamma + f.force);
+  m.drilling = m.normal * f.drilling;
+  m.rolling = m.normal * f.rolling;
   m.accel = m.force / p.mass - p.gravity * gamma;
   return m;
 }
@@ -196,13 +293,15 @@ ContactMotion<T> rolling_motion(const TableParameters& p, const Vec3<T>& gamma, 
   const Vec3<T>& s = g.s;
   // (I_G + m (|s|^2 1 - s s^T)) omega' = -omega x I_G omega - m s x (omega x (omega x s) + omega x s' + g gamma)
   const Vec3<T> drift = cross(omega, cross(omega, s)) + cross(omega, s_dot);
-  const Vec3<T> rhs = -cross(omega, inertia_times(p, omega)) - p.mass * cross(s, Vec3<T>(drift + p.gravity * gamma));
+  ContactMotion<T> m;
+  m.air = air_torque_on(p, omega);
+  const Vec3<T> rhs =
+      m.air - cross(omega, inertia_times(p, omega)) - p.mass * cross(s, Vec3<T>(drift + p.gravity * gamma));
   Eigen::Matrix<T, 3, 3> K = -p.mass * s * s.transpose();
   const T s2 = dot(s, s);
   K(0, 0) += p.Ag + p.mass * s2;
   K(1, 1) += p.Bg + p.mass * s2;
   K(2, 2) += p.C + p.mass * s2;
-  ContactMotion<T> m;
   m.omega_dot = K.inverse() * rhs;  // 3x3: the cofactor formula
   m.accel = cross(m.omega_dot, s) + drift;
   m.force = p.mass * (m.accel + p.gravity * gamma);

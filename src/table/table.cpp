@@ -9,6 +9,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <fmt/format.h>
 
@@ -47,19 +48,52 @@ std::optional<Contact> contact_from_name(std::string_view text) {
   return std::nullopt;
 }
 
-std::string_view name(FrictionLaw law) { return law == FrictionLaw::Coulomb ? "coulomb" : "viscous"; }
+std::string_view name(FrictionLaw law) {
+  return law == FrictionLaw::Coulomb ? "coulomb" : law == FrictionLaw::Contensou ? "contensou" : "viscous";
+}
 
 std::optional<FrictionLaw> friction_law_from_name(std::string_view text) {
-  if (text == "viscous") return FrictionLaw::Viscous;
-  if (text == "coulomb") return FrictionLaw::Coulomb;
+  for (FrictionLaw law : {FrictionLaw::Viscous, FrictionLaw::Coulomb, FrictionLaw::Contensou})
+    if (text == name(law)) return law;
   return std::nullopt;
 }
+
+namespace {
+
+void validate_material(const std::optional<Material>& material, const char* key) {
+  if (!material)
+    throw InvalidInput(key, fmt::format("is needed by friction_law = \"contensou\" (Hertz's contact patch): one of {}, "
+                                        "or its modulus and poisson",
+                                        material_names()));
+  if (!(std::isfinite(material->modulus) && material->modulus > 0.0))
+    throw InvalidInput(key, "its modulus must be a finite number > 0 (Pa)");
+  if (!(std::isfinite(material->poisson) && material->poisson >= 0.0 && material->poisson < 0.5))
+    throw InvalidInput(key, "its poisson ratio must be in [0, 0.5)");
+}
+
+}  // namespace
 
 void validate(const Table& table) {
   if (!(std::isfinite(table.friction) && table.friction >= 0.0))
     throw InvalidInput("table.friction", "must be a finite number >= 0");
   if (!(std::isfinite(table.slip_speed) && table.slip_speed > 0.0))
     throw InvalidInput("table.slip_speed", "must be a finite number > 0 (m/s)");
+  if (table.friction_law == FrictionLaw::Contensou) {
+    validate_material(table.tip_material, "table.tip_material");
+    validate_material(table.material, "table.material");
+  }
+  if (!(std::isfinite(table.rolling_resistance) && table.rolling_resistance >= 0.0))
+    throw InvalidInput("table.rolling_resistance", "must be a finite number >= 0 (m)");
+  if (table.rolling_resistance > 0.0 &&
+      (table.contact != Contact::Sliding || table.friction_law == FrictionLaw::Coulomb))
+    throw InvalidInput("table.rolling_resistance", "applies to table.contact = \"sliding\" under the viscous or "
+                                                   "contensou law only");
+  if (table.air) {
+    if (!(std::isfinite(table.air->density) && table.air->density > 0.0))
+      throw InvalidInput("table.air_density", "must be a finite number > 0 (kg/m^3)");
+    if (!(std::isfinite(table.air->viscosity) && table.air->viscosity > 0.0))
+      throw InvalidInput("table.air_viscosity", "must be a finite number > 0 (Pa s)");
+  }
 }
 
 bool Table::IsValid(std::string* why) const {
@@ -89,18 +123,31 @@ void validate(const Table& table, const Body& body) {
     throw InvalidInput(damped, fmt::format("applies to the pivot only: on a table (table.contact = \"{}\") the losses "
                                            "are the contact's (table.friction)",
                                            name(table.contact)));
+  if (table.contact == Contact::Sliding && table.friction_law == FrictionLaw::Contensou) {
+    if (!(body.tip_radius > 0.0))
+      throw InvalidInput("body.tip_radius", "must be > 0 for friction_law = \"contensou\": Hertz's patch is a round "
+                                            "tip's (give the tip's radius of curvature)");
+    if (body.rim_radius > 0.0)
+      throw InvalidInput("body.rim_radius", "must be 0 for friction_law = \"contensou\" (a ring's patch is not modelled)");
+  }
 }
 
 double stiff_table_ratio(double tolerance) { return 5e3 * std::pow(1e-8 / tolerance, 0.4); }
 
 Integrator table_integrator(const Body& body, const Table& table, const InitialState& initial,
                             const Tolerances& tolerances) {
-  if (table.contact != Contact::Sliding || table.friction_law != FrictionLaw::Viscous || table.friction == 0.0)
+  if (table.contact != Contact::Sliding || table.friction_law == FrictionLaw::Coulomb || table.friction == 0.0)
     return Integrator::Dop853;
   const double reach = std::abs(body.length) + body.tip_radius + body.rim_radius;
   const double inertia = std::min({central_moment_A(body), central_moment_B(body), body.C});
-  const double relaxation =
-      table.friction * body.gravity / table.slip_speed * (1.0 + body.mass * reach * reach / inertia);
+  // Contensou's law acts as the viscous one with slip_speed eps |w_n| (the patch at N = m g).
+  const double slip_speed =
+      table.friction_law == FrictionLaw::Viscous
+          ? table.slip_speed
+          : std::max(detail::drilling_arm(detail::TableParameters::of(body, table), body.mass * body.gravity) *
+                         std::abs(initial.spin),
+                     detail::kContensouRegularisation);
+  const double relaxation = table.friction * body.gravity / slip_speed * (1.0 + body.mass * reach * reach / inertia);
   const double own = std::max({std::abs(initial.spin), std::abs(initial.theta_rate0), std::abs(initial.phi_rate0),
                                std::sqrt(body.mass * body.gravity * reach / inertia)});
   const double tolerance = std::min(tolerances.rtol, tolerances.atol);
@@ -217,6 +264,20 @@ Watched watched(const TableParameters& p, const Instant& in) {
           L.dot(in.geometry.s), L.dot(in.gamma)};
 }
 
+// W: the rate at which each loss takes energy at one instant (>= 0 each).
+TableLosses power_of(const Instant& in) {
+  const V3 friction = in.motion.force - in.motion.normal * in.gamma;
+  return {-friction.dot(in.motion.slip), -in.motion.drilling.dot(in.omega), -in.motion.rolling.dot(in.omega),
+          -in.motion.air.dot(in.omega)};
+}
+
+void add(TableLosses& sum, const TableLosses& more, double weight = 1.0) {
+  sum.sliding += weight * more.sliding;
+  sum.drilling += weight * more.drilling;
+  sum.rolling += weight * more.rolling;
+  sum.air += weight * more.air;
+}
+
 struct DriftScales {
   double energy, jellett, momentum;
 };
@@ -251,14 +312,17 @@ using Rosenbrock4 = detail::RosenbrockStepper<kStateSize, TableSystem, TableHook
 // Appends the sample of state y at t to the run's trajectory.
 class TableSampler {
  public:
-  explicit TableSampler(Trajectory& out) : out_(out) {
+  TableSampler(Trajectory& out, bool losses) : out_(out), losses_(losses) {
     out_.extra.clear();
     for (auto c : kAxisDirectionColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
     for (auto c : kTableColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
+    if (losses_)
+      for (auto c : kLossColumns) out_.extra.emplace_back(std::string(c), std::vector<double>{});
   }
 
-  // `p`: the equations of that moment (Coulomb's: rolling while the contact sticks).
-  void add(double t, const TableVector& y, const TableParameters& p) {
+  // `p`: the equations of that moment (Coulomb's: rolling while the contact sticks); `losses`:
+  // the energy each loss has taken by t.
+  void add(double t, const TableVector& y, const TableParameters& p, const TableLosses& losses) {
     const Instant in = instant_of(p, y);
     const V3 k = in.R.col(2), k_rate = in.R * in.omega.cross(V3::UnitZ());
     const AxisAngles a = axis_angles(k, k_rate);
@@ -282,10 +346,15 @@ class TableSampler {
                              w.jellett,
                              w.vertical_momentum};
     for (std::size_t i = 0; i < std::size(values); ++i) out_.extra[i].second.push_back(values[i]);
+    if (losses_) {
+      const double taken[] = {losses.sliding, losses.drilling, losses.rolling, losses.air};
+      for (std::size_t i = 0; i < std::size(taken); ++i) out_.extra[std::size(values) + i].second.push_back(taken[i]);
+    }
   }
 
  private:
   Trajectory& out_;
+  bool losses_;
   ContinuousAzimuth azimuth_;
 };
 
@@ -400,7 +469,30 @@ class TableIntegration {
     double offset, t0, t1;        // s: the segment's start, the step's ends
     const TableVector& start;     // the state at t0
     const TableVector& end;       // the state at the step's end (before an event cut it short)
+    TableLosses before;           // J: what the losses took before t0 (Table::has_losses() only)
     void state_at(double t, TableVector& y) const { dense(t - offset, y); }
+    // J: what the losses took by t in [t0, t1]: their powers integrated on the dense output.
+    TableLosses losses_at(double t) const {
+      TableLosses sum = before;
+      if (params.has_losses()) add(sum, losses_over(t0, t));
+      return sum;
+    }
+    // J: the losses' powers integrated over [a, b] by Gauss-Legendre's 5 points (order 10, on
+    // the dense output of order 7: below the run's own tolerance).
+    TableLosses losses_over(double a, double b) const {
+      static constexpr double kNodes[] = {0.0, 0.5384693101056831, 0.9061798459386640};
+      static constexpr double kWeights[] = {0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
+      TableLosses sum;
+      TableVector y;
+      const double middle = 0.5 * (a + b), half = 0.5 * (b - a);
+      for (int i = 0; i < 3; ++i)
+        for (double sign : {-1.0, 1.0}) {
+          if (i == 0 && sign > 0.0) continue;
+          state_at(middle + sign * half * kNodes[i], y);
+          add(sum, power_of(instant_of(params, y)), half * kWeights[i]);
+        }
+      return sum;
+    }
   };
 
   template <class OnStep>
@@ -432,10 +524,16 @@ class TableIntegration {
     const std::function<void(double, TableVector&)> dense = [&stepper](double t, TableVector& y) {
       stepper.interpolate(t, y);
     };
+    // Hands a step to on_step, then books its losses.
+    auto deliver = [&](const StepView& view) {
+      const bool go_on = on_step(view);
+      if (q.has_losses()) add(summary.losses, view.losses_over(view.t0, view.t1));
+      return go_on;
+    };
     while (offset + stepper.time() < horizon_) {
       stepper.step();
       StepView view{dense, q, offset, offset + stepper.previous_time(), offset + stepper.time(),
-                    stepper.previous_state(), stepper.state()};
+                    stepper.previous_state(), stepper.state(), summary.losses};
       const Instant end = instant_of(q, stepper.state());
       if (!(end.motion.denominator > 0.0)) painleve(view.t1);
       // The events of this step, the earliest first: leaving the table, Coulomb's switch.
@@ -447,13 +545,13 @@ class TableIntegration {
         summary.end = TableSummary::End::LeftTable;
         summary.end_time = *leave;
         view.t1 = *leave;
-        on_step(view);
+        deliver(view);
         return false;
       }
       if (change) {
         view.t1 = *change;
         summary.end_time = *change;
-        if (!on_step(view)) return false;
+        if (!deliver(view)) return false;
         stepper.interpolate(*change - offset, y_start);
         // Stick if the force that takes is within the cone, else slip on from the switch.
         if (!stuck_ && sticks(y_start)) {
@@ -474,7 +572,7 @@ class TableIntegration {
         return true;
       }
       summary.end_time = view.t1;
-      if (!on_step(view)) return false;
+      if (!deliver(view)) return false;
     }
     return false;
   }
@@ -579,20 +677,20 @@ TableRun simulate_on_table(const Body& body, const Table& table, const InitialSt
                            const Tolerances& tolerances, const Progress& progress, Integrator integrator) {
   detail::TableIntegration integration(body, table, initial, grid.t_end, tolerances, integrator);
   TableRun run;
-  TableSampler sampler(run.trajectory);
+  TableSampler sampler(run.trajectory, table.has_losses());
   run.trajectory.reserve(grid.count);
-  sampler.add(0.0, integration.initial_state(), integration.parameters());
+  sampler.add(0.0, integration.initial_state(), integration.parameters(), TableLosses{});
   std::size_t next = 1;
   TableVector y;
   integration.run(run.summary, [&](const detail::TableIntegration::StepView& step) {
     for (; next < grid.count && grid.time(next) <= step.t1; ++next) {
       step.state_at(grid.time(next), y);
-      sampler.add(grid.time(next), y, step.params);
+      sampler.add(grid.time(next), y, step.params, step.losses_at(grid.time(next)));
       if (progress) progress(grid.time(next));
     }
     if (run.summary.end == TableSummary::End::LeftTable && run.trajectory.t.back() != step.t1) {
       step.state_at(step.t1, y);  // the last row at the event
-      sampler.add(step.t1, y, step.params);
+      sampler.add(step.t1, y, step.params, step.losses_at(step.t1));
     }
     return true;
   });
@@ -675,6 +773,36 @@ class AnswerWatch {
 
 }  // namespace
 
+TableSpinDown table_spin_down(const Body& body, const Table& table, double spin) {
+  validate(table, body);
+  if (!(std::isfinite(spin) && spin > 0.0)) throw InvalidInput("motion.spin", "must be a finite number > 0 (rad/s)");
+  const TableParameters p = TableParameters::of(body, table);
+  TableSpinDown out;
+  out.critical_spin = table_stability(body, table, spin).upright.critical_spin;
+  const double load = body.mass * body.gravity;
+  if (table.contact == Contact::Sliding && table.friction_law == FrictionLaw::Contensou) {
+    out.patch_radius = hertz_contact_radius(load, body.tip_radius, p.contact_modulus);
+    out.drilling_torque = table.friction * load * kHertzDrillingArm * out.patch_radius;
+  }
+  auto air = [&](double w) { return p.air ? air_torque(p.air_surfaces, p.air_properties, w) : 0.0; };
+  out.air_torque = air(spin);
+  if (!out.critical_spin) return out;
+  const double low = *out.critical_spin;
+  if (spin <= low) {
+    out.time_to_critical = 0.0;
+    return out;
+  }
+  if (!(out.drilling_torque + air(low) > 0.0)) return out;  // nothing slows it
+  // dt = C dw / M(w); each loss takes M_i(w) w dt.
+  using boost::math::quadrature::gauss_kronrod;
+  auto integral = [&](auto&& f) { return gauss_kronrod<double, 31>::integrate(f, low, spin, 10, 1e-13); };
+  const double C = body.C;
+  out.time_to_critical = integral([&](double w) { return C / (out.drilling_torque + air(w)); });
+  out.losses.drilling = integral([&](double w) { return C * w * out.drilling_torque / (out.drilling_torque + air(w)); });
+  out.losses.air = integral([&](double w) { return C * w * air(w) / (out.drilling_torque + air(w)); });
+  return out;
+}
+
 TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const InitialState& initial,
                                    const AnswerOptions& options) {
   validate(options);
@@ -708,6 +836,7 @@ TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const I
     const auto upright = table_stability(body, table, a.final_spin).upright;
     a.upright_attracts = upright.asymptotically;
   }
+  if (table.has_losses() && initial.spin > 0.0) a.spin_down = table_spin_down(body, table, initial.spin);
   if (a.leaves_at) {
     a.verdict = AnswerVerdict::LeavesTable;
     a.proven = true;
@@ -722,6 +851,26 @@ TableAnalysis analyse_top_on_table(const Body& body, const Table& table, const I
   } else {
     a.verdict = AnswerVerdict::StaysUpForHorizon;
   }
+  return out;
+}
+
+}  // namespace heavytop
+
+namespace heavytop {
+
+TableLifetime table_lifetime(const Body& body, const Table& table, const InitialState& initial,
+                             std::optional<double> horizon, const AnswerOptions& options) {
+  if (horizon && !(std::isfinite(*horizon) && *horizon > 0.0))
+    throw InvalidInput("horizon", "must be a finite number > 0 (s)");
+  TableLifetime out;
+  out.spin_down = table_spin_down(body, table, initial.spin);
+  const auto& t = out.spin_down.time_to_critical;
+  // The fall comes soon after the spin passes the critical spin; a run 10 times as long (the
+  // pivot's rule) costs minutes on a table.
+  out.horizon = horizon ? *horizon : t && *t > 0.0 ? std::max(1.5 * *t, 10.0) : options.horizon;
+  AnswerOptions o = options;
+  o.horizon = out.horizon;
+  out.answer = analyse_top_on_table(body, table, initial, o).answer;
   return out;
 }
 

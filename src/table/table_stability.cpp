@@ -111,7 +111,7 @@ double spin_scale(const TableParameters& p) {
 // bodies that have none (A != B), an empty list where no spin changes it. The inverted state
 // is the upright one of the body turned over: l -> -l.
 std::optional<std::vector<double>> closed_form_changes(const TableParameters& p, bool inverted) {
-  if (p.Ag != p.Bg || p.rim_radius > 0.0) return std::nullopt;
+  if (p.Ag != p.Bg || p.rim_radius > 0.0 || p.has_losses()) return std::nullopt;
   const double l = inverted ? -p.length : p.length, r = p.tip_radius, a = r + l, m = p.mass, g = p.gravity;
   double w2 = -1.0;  // the square of the spin that changes it, if > 0
   switch (p.contact) {
@@ -199,6 +199,14 @@ TableParameters parameters_for_stability(const Body& body, const Table& table) {
   TableParameters p = TableParameters::of(body, table);
   // Under Coulomb friction the vertical spinning state sticks: it rolls.
   if (table.contact == Contact::Sliding && table.friction_law == FrictionLaw::Coulomb) p.contact = Contact::Rolling;
+  // Rolling resistance is set-valued at rest (its regularisation's slope is not physics): the
+  // spinning state is linearised without it. Nor with Contensou's drilling torque: it slows the
+  // spin about the vertical, and with the spin held (the state is not an equilibrium then) its
+  // tilt of the vertical torque would read as a growth at M / (C w), which is only the horizontal
+  // angular momentum kept while the vertical one falls: the tilt grows as 1 / w over the whole
+  // spin-down, not exponentially (docs/table.md). The patch's friction force and the air stay.
+  p.rolling_resistance = 0.0;
+  p.drilling = false;
   return p;
 }
 

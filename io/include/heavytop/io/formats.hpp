@@ -64,6 +64,9 @@ std::string answer_text(const Answer& answer);
 std::string table_answer_headline(const TableAnswer& answer);
 std::string table_answer_reason(const TableAnswer& answer, const Table& table);
 std::string table_answer_text(const TableAnswer& answer, const Table& table);
+/// The sentence on how long a top asleep on the table spins under its own losses and where its
+/// energy goes (empty without a critical spin); starts with a space.
+std::string table_spin_down_words(const TableSpinDown& spin_down, const Table& table);
 
 /// `stability` on a table: the JSON (SPEC 14's keys with the table's "answer" and its "table"
 /// keys; the linear models of the same body on a pivot; the "table" object of SPEC 16) and the
@@ -80,6 +83,11 @@ extern const char* const kStabilityGlossary;
 std::string lifetime_json(const Lifetime& life);
 /// The same for people: one line for the spin reaching the critical spin, one for the fall.
 std::string lifetime_text(const Body& body, const InitialState& initial, const Lifetime& life);
+/// `heavytop lifetime` on a table (docs/contract.md section 16): SPEC section 8's keys from the
+/// spin-down asleep and the computed motion, and "table": {"verdict", "spin_down": {...}}.
+std::string table_lifetime_json(const TableLifetime& life);
+/// The same in words: how long it spins asleep and where its energy goes, then what the motion did.
+std::string table_lifetime_text(const TableLifetime& life, const Table& table);
 
 /// A number as JSON/CSV prints it: the shortest form that reads back to the same double.
 std::string number(double value);
