@@ -3,16 +3,20 @@
 // all, the answer (SPEC section 14).
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "heavytop/io/config.hpp"
 #include "heavytop/io/formats.hpp"
 #include "heavytop/answer.hpp"
 #include "heavytop/lyapunov.hpp"
 #include "heavytop/stability.hpp"
 #include "heavytop/table.hpp"
+#include "heavytop/uncertainty.hpp"
 
 namespace heavytop::cli {
 
@@ -27,7 +31,13 @@ Action add_stability_command(CLI::App& app) {
   auto answer_flags = std::make_shared<AnswerFlags>(*cmd, *options);
   auto brief = std::make_shared<bool>(false);
   cmd->add_flag("--brief", *brief, "text: the answer only (the text's first paragraph, for a class), no details");
-  return [inputs, options, answer_flags, brief] {
+  auto uncertain = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--uncertain", *uncertain,
+                  "KEY=VALUE, repeatable: a body or motion key's standard uncertainty (SI, or \"2%\" relative), or "
+                  "distribution, draws, seed; over the file's [uncertainty] key by key (SPEC 17)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  return [inputs, options, answer_flags, brief, uncertain] {
     inputs->resolve();
     // The JSON holds the answer as "answer" beside the details; a trimmed JSON would break its keys.
     if (*brief && inputs->format() != "text")
@@ -35,7 +45,18 @@ Action add_stability_command(CLI::App& app) {
                                     "the same answer)");
     answer_flags->apply();
     const Body& body = inputs->body();
+    // SPEC 17: the file's [uncertainty], then --uncertain key by key over it.
+    UncertaintyOptions uncertainty = io::uncertainty_of(inputs->configuration());
+    for (const std::string& item : *uncertain) {
+      const auto eq = item.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw InvalidInput("--uncertain", "must be KEY=VALUE (e.g. A=2% or C=1e-7), not '" + printable(item) + "'");
+      io::set_uncertainty(uncertainty, item.substr(0, eq), item.substr(eq + 1));
+    }
+    if (uncertainty.any()) validate(uncertainty, body, inputs->state());
     if (const Table& table = inputs->table(); table.on_table()) {  // SPEC section 16
+      if (uncertainty.any())
+        throw InvalidInput("uncertainty", "is propagated to the answer on a pivot only, not on a table (SPEC 16)");
       const TableAnalysis analysis = analyse_top_on_table(body, table, inputs->state(), *options);
       write_output(inputs->output(),
                    inputs->format() == "json"
@@ -48,9 +69,13 @@ Action add_stability_command(CLI::App& app) {
       ProgressBar bar("stability", answer_run_length(body, inputs->state(), *options));
       return analyse_top(body, inputs->state(), *options, [&bar](double t) { bar.update(t); });
     }();
-    write_output(inputs->output(), inputs->format() == "json" ? io::stability_json(body, analysis)
-                                   : *brief                     ? io::answer_text(analysis.answer) + "\n"
-                                                                : io::stability_text(body, analysis));
+    std::optional<UncertaintyAnalysis> how_sure;
+    if (uncertainty.any()) how_sure = analyse_uncertainty(body, inputs->state(), uncertainty, *options);
+    const UncertaintyAnalysis* u = how_sure ? &*how_sure : nullptr;
+    write_output(inputs->output(),
+                 inputs->format() == "json" ? io::stability_json(body, analysis, u)
+                 : *brief ? io::answer_text(analysis.answer) + (u ? " " + io::uncertainty_sentence(*u) : "") + "\n"
+                          : io::stability_text(body, analysis, u));
   };
 }
 

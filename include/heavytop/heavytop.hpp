@@ -38,3 +38,4 @@
 #include "heavytop/precession.hpp"      // steady precessions and permanent rotations at a tilt
 #include "heavytop/units.hpp"           // rpm (SPEC section 9)
 #include "heavytop/table.hpp"           // the body on a table (SPEC section 16)
+#include "heavytop/uncertainty.hpp"     // how sure the answer is under uncertain inputs (SPEC 17)

@@ -1,5 +1,6 @@
 // The answer (SPEC section 14) in plain words: the first thing `stability`, the report and
 // Python's repr say. Spins in rad/s and rpm, angles in degrees and rad, times in seconds.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -155,6 +156,24 @@ std::string answer_reason(const Answer& a) {
 
 std::string answer_text(const Answer& a) {
   return answer_headline(a) + " " + answer_reason(a) + " " + answer_advice(a);
+}
+
+std::string uncertainty_sentence(const UncertaintyAnalysis& u) {
+  // The probability to two decimals, as SPEC's sentence has it; 0 and 1 only when every draw
+  // agreed, so a rounded 1.00 never hides a draw that did not stay up.
+  const std::string p = u.p_stays_up == 1.0 ? "1" : u.p_stays_up == 0.0 ? "0"
+                        : fmt::format("{:.2f}", std::clamp(u.p_stays_up, 0.01, 0.99));
+  std::string critical = "no spin keeps it up in the linearized model";
+  if (u.critical_spin) {
+    // The expanded uncertainty U = 1.96 u to two significant digits, the value to the same place.
+    const double value = rpm_from_rad_per_s(u.critical_spin->value);
+    const double expanded = rpm_from_rad_per_s(1.96 * u.critical_spin->standard_uncertainty);
+    const int decimals = expanded > 0.0 ? std::max(0, 1 - static_cast<int>(std::floor(std::log10(expanded)))) : 0;
+    critical = expanded > 0.0 ? fmt::format("the critical spin is {:.{}f} +- {:.{}f} rpm (95 %)", value, decimals,
+                                            expanded, decimals)
+                              : fmt::format("the critical spin is {:.0f} rpm (no uncertain input moves it)", value);
+  }
+  return fmt::format("With these uncertainties it stays up with probability {}; {}.", p, critical);
 }
 
 // ---- on a table (SPEC section 16) --------------------------------------------------------------

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <new>
@@ -196,6 +197,9 @@ const std::map<std::string, std::vector<std::string>>& command_sections() {
       {"simulate", {"model", "t_end", "samples", "method", "rtol", "atol", "integrator", "step", "order"}},
       {"table", {"contact", "friction", "friction_law", "slip_speed", "tip_material", "tip_modulus", "tip_poisson",
                  "material", "modulus", "poisson", "rolling_resistance", "air", "air_density", "air_viscosity"}},
+      // SPEC section 17: a standard uncertainty per body or motion key, and the draws' settings.
+      {"uncertainty", {"A", "B", "C", "mass", "gravity", "length", "spin", "spin_rpm", "theta0", "phi0",
+                       "theta_rate0", "phi_rate0", "distribution", "draws", "seed"}},
   };
   return sections;
 }
@@ -430,6 +434,90 @@ std::string read_text_file(const std::string& path, const std::string& path_key,
 Configuration read_configuration(const std::string& path, const std::string& path_key) {
   return parse_configuration(read_text_file(path, path_key, kMaxConfigurationBytes, "a configuration file"), path,
                              path_key);
+}
+
+// ---- [uncertainty] (SPEC section 17) ------------------------------------------------------------
+
+namespace {
+
+/// The whole of `text` as a finite number, or nullopt.
+std::optional<double> whole_number(std::string_view text) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  if (text.empty()) return std::nullopt;
+  const std::string copy(text);
+  char* end = nullptr;
+  const double x = std::strtod(copy.c_str(), &end);
+  if (end != copy.c_str() + copy.size() || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+
+std::int64_t whole_count(const std::string& key, const SettingValue& value, const char* rule) {
+  if (const auto* i = std::get_if<std::int64_t>(&value)) {
+    if (*i < 0) throw InvalidInput(key, rule);
+    return *i;
+  }
+  std::optional<double> x;
+  if (const auto* d = std::get_if<double>(&value)) x = *d;
+  if (const auto* s = std::get_if<std::string>(&value)) x = whole_number(*s);
+  if (!x || *x < 0.0 || *x != std::trunc(*x) || *x > 9e15) throw InvalidInput(key, rule);
+  return static_cast<std::int64_t>(*x);
+}
+
+}  // namespace
+
+void set_uncertainty(UncertaintyOptions& options, const std::string& name, const SettingValue& value) {
+  const std::string key = "uncertainty." + name;
+  if (name == "distribution") {
+    const auto* s = std::get_if<std::string>(&value);
+    const auto d = s ? uncertainty_distribution_from_name(*s) : std::nullopt;
+    if (!d) throw InvalidInput(key, "must be \"gaussian\" or \"uniform\"");
+    options.distribution = *d;
+    return;
+  }
+  if (name == "draws") {
+    options.draws = whole_count(key, value, "must be a whole number >= 0 (0: adaptive, JCGM 101 7.9)");
+    return;
+  }
+  if (name == "seed") {
+    options.seed = static_cast<std::uint64_t>(whole_count(key, value, "must be a whole number >= 0"));
+    return;
+  }
+  const bool rpm = name == "spin_rpm";
+  const std::string field = rpm ? "spin" : name;
+  const auto& keys = uncertain_keys();
+  if (std::find(keys.begin(), keys.end(), field) == keys.end())
+    throw InvalidInput(printable(key), "unknown key (a body or motion key, distribution, draws or seed)");
+  InputUncertainty in;
+  std::optional<double> x;
+  if (const auto* d = std::get_if<double>(&value)) x = *d;
+  else if (const auto* i = std::get_if<std::int64_t>(&value)) x = static_cast<double>(*i);
+  else if (const auto* s = std::get_if<std::string>(&value)) {
+    std::string_view text = *s;
+    while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+    if (!text.empty() && text.back() == '%') {  // relative: "2%" is 0.02 of the nominal value
+      text.remove_suffix(1);
+      in.relative = true;
+      x = whole_number(text);
+      if (x) *x /= 100.0;
+    } else {
+      x = whole_number(text);
+    }
+  }
+  const char* rule = "must be a standard uncertainty >= 0: a number in the key's unit, or a percentage such as \"2%\"";
+  if (!x || !(*x >= 0.0)) throw InvalidInput(printable(key), rule);
+  in.value = rpm && !in.relative ? rad_per_s_from_rpm(*x) : *x;
+  options.inputs[field] = in;
+}
+
+UncertaintyOptions uncertainty_of(const Configuration& config) {
+  UncertaintyOptions options;
+  const std::string prefix = "uncertainty.";
+  for (const auto& [key, value] : config.settings)
+    if (key.compare(0, prefix.size(), prefix) == 0) set_uncertainty(options, key.substr(prefix.size()), value);
+  if (config.settings.count("uncertainty.spin") && config.settings.count("uncertainty.spin_rpm"))
+    throw InvalidInput("uncertainty.spin_rpm", "give spin or spin_rpm, not both");
+  return options;
 }
 
 }  // namespace heavytop::io

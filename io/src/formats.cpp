@@ -112,7 +112,47 @@ Json answer_object(const Answer& a) {
 
 }  // namespace
 
-std::string stability_json(const Body& body, const TopAnalysis& analysis) {
+namespace {
+
+Json quantity_json(const UncertainQuantity& q) {
+  Json out;
+  out["value"] = q.value;
+  out["standard_uncertainty"] = q.standard_uncertainty;
+  out["interval"] = Json::array({q.lo, q.hi});
+  return out;
+}
+
+Json outcome_json(const std::optional<UncertainOutcome>& o) {
+  if (!o) return nullptr;
+  Json out = quantity_json(*o);
+  out["fraction"] = o->fraction;
+  return out;
+}
+
+Json uncertainty_object(const UncertaintyAnalysis& u) {
+  Json out;
+  out["method"] = std::string(name(u.method));
+  out["draws"] = u.draws;
+  out["coverage"] = u.coverage;
+  out["p_stays_up"] = u.p_stays_up;
+  out["p_stays_up_interval"] = Json::array({u.p_stays_up_lo, u.p_stays_up_hi});
+  out["critical_spin"] = u.critical_spin ? quantity_json(*u.critical_spin) : Json(nullptr);
+  out["falls_at"] = outcome_json(u.falls_at);
+  out["max_tilt"] = outcome_json(u.max_tilt);
+  Json sensitivity = Json::object();
+  for (const auto& [key, value] : u.sensitivity)  // NaN (no critical spin) as null
+    sensitivity[key] = std::isfinite(value) ? Json(value) : Json(nullptr);
+  out["sensitivity"] = sensitivity;
+  return out;
+}
+
+}  // namespace
+
+std::string uncertainty_json(const UncertaintyAnalysis& uncertainty) {
+  return uncertainty_object(uncertainty).dump(2) + "\n";
+}
+
+std::string stability_json(const Body& body, const TopAnalysis& analysis, const UncertaintyAnalysis* uncertainty) {
   const double spin = analysis.spin;
   const auto& models = analysis.models;
   const auto& lyapunov = analysis.lyapunov;
@@ -133,6 +173,7 @@ std::string stability_json(const Body& body, const TopAnalysis& analysis) {
   w["horizon"] = optional_number(wander.horizon);
   if (!wander.max_tilt) w["note"] = wander.note;
   out["wander"] = w;
+  if (uncertainty) out["uncertainty"] = uncertainty_object(*uncertainty);
   return out.dump(2) + "\n";
 }
 
@@ -391,14 +432,14 @@ std::string normal_form_text(const LyapunovVerdict& v, double spin, const std::v
 
 }  // namespace
 
-std::string stability_text(const Body& body, const TopAnalysis& analysis) {
+std::string stability_text(const Body& body, const TopAnalysis& analysis, const UncertaintyAnalysis* uncertainty) {
   const double spin = analysis.spin;
   const auto& models = analysis.models;
   const auto& lyapunov = analysis.lyapunov;
   const auto& wander = analysis.wander;
   const auto& answer = analysis.answer;
   std::ostringstream out;
-  out << answer_text(answer) << "\n\n";
+  out << answer_text(answer) << (uncertainty ? " " + uncertainty_sentence(*uncertainty) : std::string()) << "\n\n";
   out << "The details\n-----------\n";
   out << linear_stability_text(body, spin, models);
   const LyapunovVerdict& v = lyapunov.verdict;

@@ -17,6 +17,7 @@
 #include "heavytop/mass_properties.hpp"
 #include "heavytop/state.hpp"
 #include "heavytop/table.hpp"
+#include "heavytop/uncertainty.hpp"
 
 namespace heavytop::io {
 
@@ -110,5 +111,17 @@ std::string read_text_file(const std::string& path, const std::string& path_key,
 /// Reads `path` (at most kMaxConfigurationBytes) and parses it as parse_configuration() does.
 /// Throws InvalidInput naming `path_key` also when the file cannot be read or is too large.
 Configuration read_configuration(const std::string& path, const std::string& path_key);
+
+/// Applies one key of [uncertainty] (SPEC section 17; `name` without the section, "A") to
+/// `options`: a body or motion key's standard uncertainty as a number >= 0 in SI units, or as a
+/// string, a number or a percentage ("2%": relative); `spin_rpm` an absolute one in rpm (stored
+/// as spin's, rad/s); `distribution` "gaussian" | "uniform"; `draws` and `seed` whole numbers
+/// >= 0 (a string holding one too: `--uncertain draws=1000`). Throws InvalidInput naming
+/// "uncertainty.<name>" for anything else.
+void set_uncertainty(UncertaintyOptions& options, const std::string& name, const SettingValue& value);
+
+/// The [uncertainty] section (SPEC section 17): no uncertain input when absent. Throws
+/// InvalidInput as set_uncertainty() does, and for spin and spin_rpm both given.
+UncertaintyOptions uncertainty_of(const Configuration& config);
 
 }  // namespace heavytop::io

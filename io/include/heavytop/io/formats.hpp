@@ -16,6 +16,7 @@
 #include "heavytop/stability.hpp"
 #include "heavytop/sweep.hpp"
 #include "heavytop/table.hpp"
+#include "heavytop/uncertainty.hpp"
 
 namespace heavytop::io {
 
@@ -29,8 +30,22 @@ std::string intervals_text(const std::vector<SpinInterval>& intervals);
 /// null)}, "wander" {"max_tilt" (rad or null), "method" ("closed form" | "integrated"),
 /// "horizon" (s or null), and "note" when max_tilt is null}}; the text opens with the answer in
 /// words, then the details (the models' table, the real body's verdict) and a glossary.
-std::string stability_json(const Body& body, const TopAnalysis& analysis);
-std::string stability_text(const Body& body, const TopAnalysis& analysis);
+/// With `uncertainty` (SPEC section 17), the JSON adds its "uncertainty" object (uncertainty_json())
+/// and the answer's words its sentence (uncertainty_sentence()); without, both are as before.
+std::string stability_json(const Body& body, const TopAnalysis& analysis,
+                           const UncertaintyAnalysis* uncertainty = nullptr);
+std::string stability_text(const Body& body, const TopAnalysis& analysis,
+                           const UncertaintyAnalysis* uncertainty = nullptr);
+
+/// SPEC section 17's "uncertainty" object as JSON text: {"method", "draws", "coverage",
+/// "p_stays_up", "p_stays_up_interval", "critical_spin" {"value", "standard_uncertainty",
+/// "interval"} (rad/s) or null, "falls_at" {..., "fraction"} (s) or null, "max_tilt" {...,
+/// "fraction"} (rad) or null, "sensitivity" {KEY: (rad/s) per the key's unit}}.
+std::string uncertainty_json(const UncertaintyAnalysis& uncertainty);
+
+/// The answer's added sentence (SPEC section 17): "With these uncertainties it stays up with
+/// probability 0.97; the critical spin is 1273 +- 48 rpm (95 %)." (the +- being 1.96 u, in rpm).
+std::string uncertainty_sentence(const UncertaintyAnalysis& uncertainty);
 
 /// The answer (SPEC section 14) in words, for people: answer_headline() ("Stays up.", "Falls.",
 /// ...), answer_reason() (one sentence: the JSON's "reason"), and answer_text(), the
