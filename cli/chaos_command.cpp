@@ -9,6 +9,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "heavytop/chaos.hpp"
+#include "heavytop/uncertainty.hpp"
+#include "heavytop/io/config.hpp"
 #include "heavytop/io/chaos_formats.hpp"
 
 namespace heavytop::cli {
@@ -34,7 +36,8 @@ Action add_chaos_command(CLI::App& app) {
   auto section = std::make_shared<bool>(false);
   cmd->add_option("--horizon", options->horizon, "s, the run's length T")->default_str("1000");
   auto* precision_option = cmd->add_option(
-      "--precision", *precision, "the relative precision delta, in (0, 1), to which the start is known (default 1e-15)");
+      "--precision", *precision, "the relative precision delta, in (0, 1), to which the start is known (default: the largest relative "
+      "standard uncertainty of the file's [uncertainty], else 1e-15)");
   cmd->add_option("--renormalisation-interval", options->renormalisation_interval,
                   "s, how often the tangent vectors are re-orthonormalised")
       ->default_str("1");
@@ -49,7 +52,13 @@ Action add_chaos_command(CLI::App& app) {
   return [inputs, options, precision, precision_option, section] {
     inputs->resolve(/*allow_general=*/true);
     ChaosOptions o = *options;
-    if (precision_option->count()) o.precision = *precision;
+    if (precision_option->count()) {
+      o.precision = *precision;
+    } else if (const UncertaintyOptions u = io::uncertainty_of(inputs->configuration()); u.any()) {
+      // SPEC 17: the inputs' largest relative standard uncertainty (a start known to 1 or worse
+      // is not predicted at all: its horizon is 0 from 1e-2 on).
+      if (const auto d = largest_relative_uncertainty(u, inputs->body(), inputs->state())) o.precision = std::min(*d, 0.5);
+    }
     o.section = false;
     try {
       validate(o);

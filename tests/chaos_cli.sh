@@ -62,6 +62,16 @@ refused() {  # refused NAME KEY ARGS...
   check "$name: one line" [ "$(wc -l < err.txt)" = 1 ]
   check "$name: nothing written" [ ! -e refused.out ]
 }
+# SPEC 17: without --precision, the inputs' largest relative standard uncertainty.
+printf '[body]\nA = 4.35e-5\nB = 4.35e-5\nC = 1.2e-5\nmass = 0.06\nlength = 0.025\n[motion]\nspin = 200\ntheta0 = 0.05\n[uncertainty]\nA = "2%%"\nC = 6e-8\n' > uncertain.toml
+"$H" chaos --config uncertain.toml --horizon 5 --format json > uncertain.json
+check "precision from [uncertainty]" python3 -c "
+import json
+assert json.load(open('uncertain.json'))['precision'] == 0.02"
+"$H" chaos --config uncertain.toml --horizon 5 --precision 1e-9 --format json > given.json
+check "--precision over [uncertainty]" python3 -c "
+import json
+assert json.load(open('given.json'))['precision'] == 1e-9"
 refused "horizon 0" "--horizon" --horizon 0
 refused "horizon < 0" "--horizon" --horizon -5
 refused "precision 0" "--precision" --precision 0

@@ -38,4 +38,5 @@
 #include "heavytop/precession.hpp"      // steady precessions and permanent rotations at a tilt
 #include "heavytop/units.hpp"           // rpm (SPEC section 9)
 #include "heavytop/table.hpp"           // the body on a table (SPEC section 16)
+#include "heavytop/contact_losses.hpp"  // Hertz's patch, drilling friction and the air on a real top
 #include "heavytop/uncertainty.hpp"     // how sure the answer is under uncertain inputs (SPEC 17)

@@ -63,6 +63,12 @@ struct UncertaintyOptions {
   bool any() const noexcept { return !inputs.empty(); }
 };
 
+/// Dimensionless: the largest relative standard uncertainty u(x) / |x| of the inputs of
+/// `options` whose nominal value in `body`, `initial` is not 0 (SPEC 17: the chaos command's
+/// default precision); nullopt when there is none.
+std::optional<double> largest_relative_uncertainty(const UncertaintyOptions& options, const Body& body,
+                                                   const InitialState& initial);
+
 /// Throws InvalidInput for the first setting out of range (UncertaintyOptions::IsValid's keys),
 /// and for a relative uncertainty of a key whose nominal value is 0 ("uncertainty.theta0").
 void validate(const UncertaintyOptions& options, const Body& body, const InitialState& initial);

@@ -38,6 +38,7 @@ its arguments and their units):
     lifetime(body, spin=)        how long a damped top stays up (s)                   [lifetime]
     fit_decay(t, spin)           damping (N m s, N m) fitted to a spin decay          [fit-decay]
     precession(body, tilt)       steady precessions at a tilt (rad/s)                 [precession]
+    chaos(body, spin=)           Lyapunov exponents, MEGNO, the prediction horizon   [chaos]
     body_from_parts(parts)       the Body that [[body.part]] tables make (kg m^2, m)  [body]
     body_report(parts or body)   the mass properties of parts or of a body            [body]
     load(path)                   a configuration file: body, motion, options          [--config]
@@ -69,7 +70,7 @@ examples/notebooks/tour.ipynb is a tour.
 """
 from . import _arguments  # noqa: F401 - one-line TypeErrors from _core, before anything takes its functions
 from ._core import HAS_DERIVE, MODELS, Body, InvalidInput, Table, __version__, example_motion, example_toy_top, grid_values
-from ._api import (body_from_parts, body_report, compare, example_file, derive, derive_check, derive_rotations, fit_decay, lifetime,
+from ._api import (body_from_parts, body_report, chaos, compare, example_file, derive, derive_check, derive_rotations, fit_decay, lifetime,
                    explore, load, precession, read_map, report, rpm, show, simulate, stability, sweep)
 from . import results
 from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationCheck, FittedParameter, Lifetime, Lyapunov, NormalForm,
@@ -81,7 +82,7 @@ from .results import (CheckRow, Comparison, DecayFit, Derivation, DerivationChec
 __all__ = [
     "__version__", "HAS_DERIVE", "MODELS", "Body", "Table", "InvalidInput", "example_toy_top", "example_motion",
     "example_file", "stability", "simulate", "compare", "sweep", "read_map", "lifetime", "grid_values", "derive", "derive_rotations", "derive_check",
-    "body_from_parts", "body_report", "precession", "rpm",
+    "body_from_parts", "body_report", "precession", "rpm", "chaos",
     "results", "Answer", "Stability", "ModelStability", "Comparison", "ModelComparison", "NonlinearReference", "Trajectory",
     "SimulationSummary", "StabilityMap", "Derivation", "Rotations", "DerivationCheck", "CheckRow", "Lyapunov", "NormalForm",
     "Wander", "Lifetime", "fit_decay", "DecayFit", "FittedParameter",

@@ -449,6 +449,30 @@ def precession(body: Body, tilt: float, spin: Optional[float] = None, *, spin_rp
     return Precession.from_json(_core.precession(body, tilt, _spin(spin, spin_rpm)))
 
 
+def chaos(body: Body, spin: Optional[float] = None, *, spin_rpm: Optional[float] = None, theta0: float = 0.0,
+          phi0: float = 0.0, theta_rate0: float = 0.0, phi_rate0: float = 0.0, horizon: float = 1000.0,
+          precision: Optional[float] = None, renormalisation_interval: float = 1.0,
+          section: bool = False) -> Dict[str, Any]:
+    """How chaotic the motion from this start is (SPEC 17, docs/chaos.md): json.loads of
+    `heavytop chaos --format json`, {"lyapunov_exponent" (1/s), "lyapunov_error" (1/s),
+    "history" ([t, l(t)] rows), "spectrum" (six, 1/s, descending), "megno", "prediction_horizon"
+    (s, or None when not chaotic), "precision", "chaotic"}; with section=True that of
+    `chaos --section --format json`, the Poincare section psi = 0 (t s, tilt rad, tilt_rate rad/s).
+
+        body        Body (SI units): conservative, on a pivot (the general body too)
+        spin, theta0, phi0, theta_rate0, phi_rate0
+                    the start (SPEC section 2; spin or spin_rpm)
+        horizon     s, > 0: the run's length T                               [--horizon]
+        precision   the relative precision delta in (0, 1) to which the start is known (None:
+                    1e-15): the prediction horizon is ln(1e-2 / delta) / lambda  [--precision]
+        renormalisation_interval
+                    s, > 0: Benettin's renormalisation   [--renormalisation-interval]
+    """
+    return _core.chaos(body, _spin(spin, spin_rpm), theta0=theta0, phi0=phi0, theta_rate0=theta_rate0,
+                       phi_rate0=phi_rate0, horizon=horizon, precision=precision,
+                       renormalisation_interval=renormalisation_interval, section=section)
+
+
 def example_file(name: str) -> str:
     """The path of one of the examples the package ships: the repository's examples/ folder,
     copied into the installed package (heavytop/examples/), so that a notebook or script runs

@@ -61,6 +61,7 @@ void bind_sweep(py::module_& m);
 void bind_derive(py::module_& m);
 void bind_parts(py::module_& m);
 void bind_fit_decay(py::module_& m);
+void bind_chaos(py::module_& m);
 void bind_config(py::module_& m);
 void bind_report(py::module_& m);
 void bind_table(py::module_& m);

@@ -45,6 +45,7 @@ PYBIND11_MODULE(_core, m) {
   bind_derive(m);
   bind_parts(m);
   bind_fit_decay(m);
+  bind_chaos(m);
   bind_config(m);
   bind_report(m);
 }

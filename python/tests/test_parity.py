@@ -32,7 +32,7 @@ BODIES = {"damped": DAMPED, "general": GENERAL}
 # Every command of the command line and the test(s) below that hold Python to it. derive has no
 # body: test_same_as_cli.py holds derive(), derive_rotations() and derive_check() to it.
 COVERED = {"stability", "simulate", "compare", "sweep", "report", "body", "precession", "lifetime", "fit-decay",
-           "explore", "derive"}
+           "explore", "derive", "chaos"}
 
 
 def config(tmp_path, body, motion=MOTION, name=None):
@@ -312,3 +312,19 @@ def test_explore_damped(tmp_path):
     same_message(lambda: heavytop.explore(GENERAL, tmp_path / "g.html", **MOTION), "explore", "--config",
                  config(tmp_path, GENERAL), "--output", str(tmp_path / "g2.html"))
     assert not (tmp_path / "g.html").exists()
+
+
+# ---- chaos (SPEC 17) ---------------------------------------------------------------------------------
+
+def test_chaos_is_the_cli_s(tmp_path):
+    """heavytop.chaos() is json.loads of `heavytop chaos --format json`, its section's too."""
+    top = heavytop.example_toy_top()
+    motion = {"spin": 150.0, "theta0": 0.1}
+    path = config(tmp_path, top, motion)
+    result = heavytop.chaos(top, **motion, horizon=20.0, precision=1e-9)
+    assert result == cli_json("chaos", "--config", path, "--horizon", "20", "--precision", "1e-9")
+    assert result["chaotic"] is False and result["prediction_horizon"] is None and len(result["spectrum"]) == 6
+    section = heavytop.chaos(top, **motion, horizon=20.0, section=True)
+    assert section == cli_json("chaos", "--config", path, "--horizon", "20", "--section")
+    with pytest.raises(heavytop.InvalidInput, match="precision"):
+        heavytop.chaos(top, **motion, precision=2.0)

@@ -190,6 +190,18 @@ bool UncertaintyOptions::IsValid(std::string* why) const {
   return true;
 }
 
+std::optional<double> largest_relative_uncertainty(const UncertaintyOptions& options, const Body& body,
+                                                   const InitialState& initial) {
+  std::optional<double> largest;
+  for (const auto& [key, in] : options.inputs) {
+    const double x = nominal(body, initial, key);
+    if (x == 0.0) continue;
+    const double relative = standard_uncertainty(in, x, options.distribution) / std::abs(x);
+    if (!largest || relative > *largest) largest = relative;
+  }
+  return largest;
+}
+
 void validate(const UncertaintyOptions& options, const Body& body, const InitialState& initial) {
   std::string why;
   if (!options.IsValid(&why)) {
