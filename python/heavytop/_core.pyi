@@ -185,6 +185,6 @@ def motion_view_data(body: Body, spin: float, columns: Dict[str, Any]) -> str: .
 def page_script() -> Tuple[Optional[bytes], Optional[str]]: ...
 
 
-def chaos(body: Body, spin: float, *, theta0: float, phi0: float, theta_rate0: float, phi_rate0: float,
+def chaos(body: Body, spin: float, theta0: float, phi0: float, theta_rate0: float, phi_rate0: float,
           horizon: float, precision: Optional[float], renormalisation_interval: float,
           section: bool) -> Dict[str, Any]: ...

@@ -2,6 +2,8 @@
 // and of its Poincare section (`chaos --section --format json`), from the core's analyse_chaos().
 #include <optional>
 
+#include <pybind11/stl.h>
+
 #include "bindings.hpp"
 #include "interrupt.hpp"
 #include "heavytop/chaos.hpp"
