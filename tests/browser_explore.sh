@@ -23,9 +23,10 @@ check "explore without --output: exit 2" test $? -eq 2 -a "$(wc -l < err.txt)" -
 check "explore --output -: exit 0, nothing on stderr" test $? -eq 0 -a ! -s err.txt
 check "explore --output -: the page on stdout, as --output FILE writes it" cmp -s page/stdout.html page/explore.html
 # Every option of stability is one of explore's (the page answers as stability does); --brief
-# only trims stability's printed text.
+# only trims stability's printed text; --uncertain (SPEC 17's uncertain inputs) is not on the
+# page yet (issue 44): the page answers for exact inputs.
 missing=$(comm -23 <("$H" stability --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9_-]+' | sed 's/^ *//; s/^-.,//' | sort -u) \
-                   <("$H" explore --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9_-]+' | sed 's/^ *//; s/^-.,//' | sort -u) | grep -v -x -e --format -e --brief)
+                   <("$H" explore --help | grep -oE '^  (-[a-z],)?--[A-Za-z0-9_-]+' | sed 's/^ *//; s/^-.,//' | sort -u) | grep -v -x -e --format -e --brief -e --uncertain)
 check "explore takes every option of stability${missing:+ (missing: $missing)}" test -z "$missing"
 "$H" explore --axial-damping 2e-6 --driven true --output page/driven.html
 check "explore --driven true: the page starts with the motor" grep -q '"driven": true' page/driven.html

@@ -107,13 +107,19 @@ assert 40 < s['time_to_critical'] < 60 and s['losses']['air'] > s['losses']['dri
 taken = s['losses']['drilling'] + s['losses']['air']
 assert abs(taken - 0.5 * C * (w0 ** 2 - wc ** 2)) < 1e-9 * taken, (taken, 0.5 * C * (w0 ** 2 - wc ** 2))"
 check "spin-down in words" bash -c "'$H' stability --config '$examples/wooden-top-on-table.toml' --horizon 2 | head -1 | grep -q 'Asleep on this table it spins about 51.31 s before its spin falls to the critical 160.2 rad/s (1530 rpm)'"
-# Without the drilling torque's spin-down read as a growth, the critical spin does not depend on mu.
-check "critical spin free of mu" python3 -c "
-import json, subprocess
-w = [json.loads(subprocess.run(['$H', 'stability', '--config', '$examples/wooden-top-on-table.toml', '--table-friction', mu,
-     '--horizon', '0.01', '--format', 'json'], capture_output=True, text=True).stdout)['table']['upright']['critical_spin']
-     for mu in ('0.03', '0.3')]
-assert abs(w[0] - w[1]) < 1e-3 * w[0], w"
+# The upright's critical spin with the losses is the viscous law's closed form (docs/table.md).
+check "critical spin: the closed form, free of mu" python3 -c "
+import json, math, subprocess
+def run(mu):
+    return json.loads(subprocess.run(['$H', 'stability', '--config', '$examples/wooden-top-on-table.toml', '--table-friction',
+                                      mu, '--horizon', '0.01', '--format', 'json'], capture_output=True, text=True).stdout)
+d = run('0.3')
+b = d['body']
+m, l, r, C, g = b['mass'], b['length'], b['tip_radius'], b['C'], b['gravity']
+Ag, a = b['A'] - m * l * l, r + l
+closed = math.sqrt(m * g * l * a * a / (r * (C * a - Ag * r)))
+for w in (d['table']['upright']['critical_spin'], run('0.03')['table']['upright']['critical_spin']):
+    assert abs(w - closed) < 1e-12 * closed, (w, closed)"
 check "contensou needs materials" refuse table.tip_material simulate --config "$examples/tippe-top.toml" --friction-law contensou
 check "unknown material" refuse table.material simulate --config "$examples/tippe-top.toml" --friction-law contensou --tip-material abs --table-material granite
 check "contensou needs a round tip" refuse body.tip_radius simulate --contact sliding --friction-law contensou --tip-material steel --table-material oak

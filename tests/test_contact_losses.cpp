@@ -241,3 +241,31 @@ TEST(TableLosses, BadSettingsAreRefusedByName) {
 
 }  // namespace
 }  // namespace heavytop
+
+namespace heavytop {
+namespace {
+
+TEST(TableLosses, TheUprightChangesStabilityWhereTheViscousClosedFormSays) {
+  // Linearised, Contensou's law is viscous with slip_speed eps w and the air acts on the spin
+  // alone, so the eigenvalues (computed, not the closed form) change sign at
+  // w^2 = m g l a^2 / (r (C a - A_G r)), whatever mu, with the air or without.
+  const Body body = toy_top();
+  const double m = body.mass, g = body.gravity, l = body.length, r = body.tip_radius, a = r + l;
+  const double closed = std::sqrt(m * g * l * a * a / (r * (body.C * a - central_moment_A(body) * r)));
+  for (bool air : {false, true})
+    for (double mu : {0.05, 0.3}) {
+      Table t = contensou_table(air);
+      t.friction = mu;
+      auto growth = [&](double w) {
+        double largest = -1e300;
+        for (const auto& e : table_eigenvalues(body, t, w, false)) largest = std::max(largest, e.real());
+        return largest;
+      };
+      EXPECT_GT(growth(0.999 * closed), 1e-9) << "mu " << mu << " air " << air;
+      EXPECT_LT(growth(1.001 * closed), 1e-12) << "mu " << mu << " air " << air;
+      EXPECT_NEAR(*table_stability(body, t, 2.0 * closed).upright.critical_spin, closed, 1e-12 * closed);
+    }
+}
+
+}  // namespace
+}  // namespace heavytop

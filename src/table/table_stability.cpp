@@ -111,7 +111,11 @@ double spin_scale(const TableParameters& p) {
 // bodies that have none (A != B), an empty list where no spin changes it. The inverted state
 // is the upright one of the body turned over: l -> -l.
 std::optional<std::vector<double>> closed_form_changes(const TableParameters& p, bool inverted) {
-  if (p.Ag != p.Bg || p.rim_radius > 0.0 || p.has_losses()) return std::nullopt;
+  // The body's own losses keep these: linearised, Contensou's law is the viscous one with
+  // slip_speed eps w (the change is free of slip_speed), the air's torque acts on the spin alone
+  // (decoupled from the tilt at first order), and the drilling torque and rolling resistance are
+  // left out (parameters_for_stability).
+  if (p.Ag != p.Bg || p.rim_radius > 0.0) return std::nullopt;
   const double l = inverted ? -p.length : p.length, r = p.tip_radius, a = r + l, m = p.mass, g = p.gravity;
   double w2 = -1.0;  // the square of the spin that changes it, if > 0
   switch (p.contact) {
