@@ -8,6 +8,7 @@
 // with its motor, the damping) with, when the configuration holds more than those (the table,
 // the answer's options), the whole configuration as the page's start (window.HEAVYTOP_CONFIG; else
 // it stays null and the page is byte for byte Python's explore()).
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -37,6 +38,25 @@ std::string page_start(const Inputs& inputs, const AnswerOptions& o) {
                     {"C", b.C},         {"mass", b.mass},
                     {"gravity", b.gravity}, {"length", b.length},
                     {"tip_radius", b.tip_radius}, {"rim_radius", b.rim_radius}};
+  // The air drags on the parts' own surfaces (io::table_of): with the air on, the page takes the
+  // solid parts themselves (its "parts" mode), so its answer is stability's. Else the moments.
+  const auto& parts = inputs.configuration().parts;
+  const bool solids = !parts.empty() && std::none_of(parts.begin(), parts.end(), [](const auto& p) { return p.mesh; });
+  if (t.air && solids) {
+    json list = json::array();
+    for (const auto& p : parts) {
+      const SolidPart& q = p.solid;
+      json part = {{"shape", name(q.shape)}, {"radius", q.radius}, {"z0", q.z0}};
+      if (q.shape != PartShape::Sphere) part["height"] = q.height;
+      if (q.shape == PartShape::Tube) part["inner_radius"] = q.inner_radius;
+      if (q.shape == PartShape::Cone) part["apex"] = q.apex_up ? "up" : "down";
+      if (q.density) part["density"] = *q.density;
+      if (q.mass) part["mass"] = *q.mass;
+      list.push_back(part);
+    }
+    config["body"] = {{"gravity", b.gravity}, {"tip_radius", b.tip_radius}, {"rim_radius", b.rim_radius},
+                      {"part", list}};
+  }
   config["motion"] = {{"spin", s.spin},           {"theta0", s.theta0},       {"phi0", s.phi0},
                       {"theta_rate0", s.theta_rate0}, {"phi_rate0", s.phi_rate0}, {"driven", b.damping.driven}};
   config["damping"] = {{"transverse", b.damping.transverse}, {"axial", b.damping.axial},

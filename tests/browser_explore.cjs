@@ -378,6 +378,19 @@ async function checkEveryOption(browser, mainPage) {
 // The examples on a table opened by `heavytop explore --config`: the page's answer (the headline,
 // the words, the JSON with its events) is `heavytop stability`'s; the 3D view draws the table.
 async function checkTable(browser) {
+  {  // The body's own losses (issue 43): a wooden top of parts on oak, its air on the parts' surfaces.
+    const args = ["--config", path.join(examples, "wooden-top-on-table.toml"), "--horizon", "5"];
+    const shown = await explorePage(browser, "table-wooden-top", args);
+    if (check("wooden top on a table: the page starts", !shown.error && !!shown.stability, shown.error || shown.errors.join(" | "))) {
+      const want = cliJson(args);
+      const diff = compare(shown.stability, want, "", 1e-12, 0, []);
+      check(`wooden top on a table: the page's answer equals heavytop stability's (spins ${want.answer.table.spin_down.time_to_critical} s ` +
+            "asleep, by its parts' air)", diff.length === 0 && shown.config.body.part !== undefined, diff.slice(0, 3).join("; "));
+      check("wooden top on a table: the page's words are stability's", sameWords(shown.words, cliWords(args)),
+            `${shown.words} | ${cliWords(args)}`);
+      check("wooden top on a table: no page error", shown.errors.length === 0, shown.errors.join(" | "));
+    }
+  }
   for (const example of ["tippe-top", "rising-top", "rolling-coin"]) {
     const file = path.join(examples, `${example}.toml`);
     const shown = await explorePage(browser, `table-${example}`, ["--config", file]);

@@ -429,7 +429,8 @@
     let s, words;
     try {
       if (config.body.part) {
-        madeBody = body(config);
+        const { table, ...pivot } = config;  // `heavytop body` is the pivot's: the parts' sums
+        madeBody = body(pivot);
         const b = madeBody;
         $("body-made").textContent = `They make A = ${fmt(b.A, 6)}, B = ${fmt(b.B, 6)}, C = ${fmt(b.C, 6)} kg m², ` +
           `mass ${fmt(b.mass, 6)} kg, centre of mass at ${fmt(b.length, 6)} m on the axis (heavytop body).`;
