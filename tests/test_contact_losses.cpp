@@ -14,23 +14,19 @@
 
 #include "heavytop/contact_losses.hpp"
 #include "heavytop/table.hpp"
+#include "table_testing.hpp"
 
 namespace heavytop {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-using boost::math::quadrature::gauss_kronrod;
+using table_testing::column;
+using table_testing::start;
 
-// The built-in wooden toy top (about its tip O) with a round steel tip.
-Body toy_top(double tip_radius = 5e-4) {
-  Body b;
-  b.mass = 0.060;
-  b.length = 0.025;
-  b.C = 1.2e-5;
-  b.A = b.B = 6.0e-6 + b.mass * b.length * b.length;
-  b.tip_radius = tip_radius;
-  return b;
-}
+constexpr double kPi = 3.141592653589793;
+
+// The built-in wooden toy top with a round steel tip of 0.5 mm.
+Body toy_top() { return table_testing::toy_top(5e-4); }
+using boost::math::quadrature::gauss_kronrod;
 
 Table contensou_table(bool air, double rolling_resistance = 0.0) {
   Table t;
@@ -44,24 +40,11 @@ Table contensou_table(bool air, double rolling_resistance = 0.0) {
   return t;
 }
 
-InitialState start(double spin, double theta0) {
-  InitialState s;
-  s.spin = spin;
-  s.theta0 = theta0;
-  return s;
-}
-
 Tolerances tight() {
   Tolerances t;
   t.rtol = 1e-12;
   t.atol = 1e-13;
   return t;
-}
-
-const std::vector<double>& column(const TableRun& run, const char* name) {
-  for (const auto& [n, values] : run.trajectory.extra)
-    if (n == name) return values;
-  throw std::runtime_error(std::string("no column ") + name);
 }
 
 TEST(HertzPatch, ItsPressureMakesTheApproachItsRadiusNeeds) {
@@ -224,7 +207,7 @@ TEST(TableLosses, BadSettingsAreRefusedByName) {
   EXPECT_THROW(
       {
         try {
-          validate(t, toy_top(0.0));
+          validate(t, table_testing::toy_top(0.0));
         } catch (const InvalidInput& e) {
           EXPECT_EQ(e.key(), "body.tip_radius");
           throw;

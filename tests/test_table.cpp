@@ -16,22 +16,16 @@
 
 #include "heavytop/simulate.hpp"
 #include "heavytop/table.hpp"
+#include "table_testing.hpp"
 
 namespace heavytop {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+using table_testing::column;
+using table_testing::start;
+using table_testing::toy_top;
 
-// The built-in wooden toy top's numbers (about its tip O): A_G = 6e-6, C = 1.2e-5 kg m^2.
-Body toy_top(double tip_radius) {
-  Body b;
-  b.mass = 0.060;
-  b.length = 0.025;
-  b.C = 1.2e-5;
-  b.A = b.B = 6.0e-6 + b.mass * b.length * b.length;
-  b.tip_radius = tip_radius;
-  return b;
-}
+constexpr double kPi = 3.141592653589793;
 
 // Friedl's tippe top on its ball (Leine and Glocker 2003): m = 6 g, A_G = 8e-7, C = 7e-7 kg m^2,
 // r = 15 mm, the centre of mass 3 mm below the ball's centre.
@@ -52,26 +46,11 @@ Table table_of(Contact contact, double friction = 0.0) {
   return t;
 }
 
-InitialState start(double spin, double theta0, double phi0 = 0.0, double phi_rate0 = 0.0) {
-  InitialState s;
-  s.spin = spin;
-  s.theta0 = theta0;
-  s.phi0 = phi0;
-  s.phi_rate0 = phi_rate0;
-  return s;
-}
-
 Tolerances tight() {
   Tolerances t;
   t.rtol = 1e-13;
   t.atol = 1e-14;
   return t;
-}
-
-const std::vector<double>& column(const TableRun& run, const char* name) {
-  for (const auto& [n, values] : run.trajectory.extra)
-    if (n == name) return values;
-  throw std::runtime_error(std::string("no column ") + name);
 }
 
 // ---- frictionless ---------------------------------------------------------------------------
