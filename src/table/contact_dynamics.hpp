@@ -21,7 +21,7 @@
 #include "heavytop/body.hpp"
 #include "heavytop/contact_losses.hpp"
 #include "heavytop/table.hpp"
-#include "table/air_drag.hpp"
+#include "table/loss_laws.hpp"
 
 namespace heavytop::detail {
 
@@ -175,19 +175,10 @@ struct FrictionPerNormal {
   Vec3<T> rolling = Vec3<T>::Zero();   // m (N m / N)
 };
 
-template <class T>
-T cube_root(const T& x) {
-  if constexpr (std::is_same_v<T, double>)
-    return std::cbrt(x);
-  else
-    return std::real(x) > 0.0 ? std::pow(x, 1.0 / 3.0) : T(0.0);
-}
-
 // m: Contensou's arm (3 pi / 16) a at normal force N, a Hertz's patch radius.
 template <class T>
 T drilling_arm(const TableParameters& p, const T& normal) {
-  if (!(std::real(normal) > 0.0)) return T(0.0);
-  return kHertzDrillingArm * cube_root(T(3.0 * p.tip_radius / (4.0 * p.contact_modulus) * normal));
+  return kHertzDrillingArm * hertz_radius(normal, p.tip_radius, p.contact_modulus);
 }
 
 // `normal` (N) matters to Contensou's law only: its patch grows as N^(1/3).

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "table/air_drag.hpp"
+#include "table/loss_laws.hpp"
 
 namespace heavytop {
 
@@ -40,7 +40,7 @@ double contact_modulus(const Material& a, const Material& b) {
 }
 
 double hertz_contact_radius(double load, double sphere_radius, double modulus) {
-  return std::cbrt(3.0 * std::max(load, 0.0) * sphere_radius / (4.0 * modulus));
+  return detail::hertz_radius(load, sphere_radius, modulus);
 }
 
 std::vector<AirSurface> air_surfaces(const std::vector<SolidPart>& parts) {

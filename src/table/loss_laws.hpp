@@ -1,9 +1,12 @@
 #pragma once
-// Private to the library: the air's torque on a spinning surface (contact_losses.hpp's laws),
-// templated on the scalar so that the table's equations differentiate it by the complex step.
+// Private to the library: the laws of a real top's losses (contact_losses.hpp), Hertz's patch
+// and the air's torque on a spinning surface, templated on the scalar so that the table's
+// equations differentiate them by the complex step; contact_losses.cpp's double functions are
+// these.
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <type_traits>
 
 #include "heavytop/contact_losses.hpp"
 
@@ -11,6 +14,22 @@ namespace heavytop::detail {
 
 inline double real_part(double x) { return x; }
 inline double real_part(const std::complex<double>& x) { return x.real(); }
+
+template <class T>
+T cube_root(const T& x) {
+  if constexpr (std::is_same_v<T, double>)
+    return std::cbrt(x);
+  else
+    return real_part(x) > 0.0 ? std::pow(x, 1.0 / 3.0) : T(0.0);
+}
+
+// m: Hertz's patch radius a = (3 N R / (4 E*))^(1/3) of a sphere of radius R (m) pressed on a
+// flat by `load` (N; 0 for a load <= 0) with contact modulus E* (Pa).
+template <class T>
+T hertz_radius(const T& load, double sphere_radius, double modulus) {
+  if (!(real_part(load) > 0.0)) return T(0.0);
+  return cube_root(T(3.0 * sphere_radius / (4.0 * modulus) * load));
+}
 
 // N m, with the sign of `spin`: the torque the air exerts against `surface` spinning at `spin`
 // (rad/s) about its axis. |spin| is continued analytically as sqrt(spin^2) for the complex step.
