@@ -29,6 +29,14 @@ inline InitialState start(double spin, double theta0, double phi0 = 0.0, double 
   return s;
 }
 
+// Integrator settings of a tight run (relative and absolute tolerances).
+inline Tolerances tolerances(double rtol, double atol) {
+  Tolerances t;
+  t.rtol = rtol;
+  t.atol = atol;
+  return t;
+}
+
 // The column called `name` of a table run (kTableColumns, kLossColumns).
 inline const std::vector<double>& column(const TableRun& run, const char* name) {
   for (const auto& [n, values] : run.trajectory.extra)

@@ -40,12 +40,7 @@ Table contensou_table(bool air, double rolling_resistance = 0.0) {
   return t;
 }
 
-Tolerances tight() {
-  Tolerances t;
-  t.rtol = 1e-12;
-  t.atol = 1e-13;
-  return t;
-}
+Tolerances tight() { return table_testing::tolerances(1e-12, 1e-13); }
 
 TEST(HertzPatch, ItsPressureMakesTheApproachItsRadiusNeeds) {
   // Hertz's pressure p0 sqrt(1 - r^2/a^2) (p0 = 3 N / (2 pi a^2)) presses the two surfaces

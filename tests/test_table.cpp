@@ -46,12 +46,7 @@ Table table_of(Contact contact, double friction = 0.0) {
   return t;
 }
 
-Tolerances tight() {
-  Tolerances t;
-  t.rtol = 1e-13;
-  t.atol = 1e-14;
-  return t;
-}
+Tolerances tight() { return table_testing::tolerances(1e-13, 1e-14); }
 
 // ---- frictionless ---------------------------------------------------------------------------
 
